@@ -1,0 +1,43 @@
+#pragma once
+// The reference database query: every object tested for every ray (the ground truth).
+#include <vector>
+
+#include "core/intersect.h"
+#include "core/trace_stats.h"
+#include "core/transmission.h"
+#include "core/whitted.h"
+
+namespace raycube::core {
+
+class BruteForce {
+ public:
+  BruteForce(const Scene& scene, const Whitted& shading) : scene_(scene), shading_(shading) {}
+
+  Hit closestHit(const Ray& ray, TraceCounters& counters) const {
+    Hit best;
+    for (std::uint32_t i = 0; i < scene_.objects.size(); ++i) {
+      ++counters.intersectionTests;
+      const Hit h{nearestHit(scene_.objects[i], ray, kInfinity), i};
+      if (h.t < kInfinity && h.closerThan(best)) best = h;
+    }
+    return best;
+  }
+
+  double transmission(const Ray& ray, TraceCounters& counters, std::vector<Hit>& crossed) const {
+    crossed.clear();
+    for (std::uint32_t i = 0; i < scene_.objects.size(); ++i) {
+      ++counters.intersectionTests;
+      const double t = nearestHit(scene_.objects[i], ray, ray.tMax);
+      if (t == kInfinity) continue;
+      if (!shading_.transmissive(i)) return 0;
+      crossed.push_back(Hit{t, i});
+    }
+    return attenuate(1.0, crossed, shading_);
+  }
+
+ private:
+  const Scene& scene_;
+  const Whitted& shading_;
+};
+
+}  // namespace raycube::core

@@ -1,0 +1,68 @@
+#include "core/framebuffer.h"
+
+#include <cmath>
+
+#include "core/image.h"
+
+namespace raycube::core {
+namespace {
+
+// Each contribution is rounded on its own; out-of-range values saturate instead of overflowing.
+std::int64_t toFixed(double value) {
+  constexpr double kLimit = 0x1p62;
+  const double scaled = value * Framebuffer::kFixedScale;
+  if (scaled >= kLimit) return std::int64_t(kLimit);
+  if (scaled <= -kLimit) return -std::int64_t(kLimit);
+  return std::llround(scaled);
+}
+
+}  // namespace
+
+Framebuffer::Framebuffer(int samplesX, int samplesY)
+    : samplesX_(samplesX), samplesY_(samplesY), fixed_(std::size_t(samplesX) * samplesY * 3, 0) {}
+
+bool Framebuffer::add(const Contribution& c) {
+  std::int64_t* slot = &fixed_[std::size_t(c.sample) * 3];
+  bool finite = true;
+  for (int ch = 0; ch < 3; ++ch) {
+    if (!std::isfinite(c.value[ch])) {
+      finite = false;
+      continue;
+    }
+    slot[ch] += toFixed(c.value[ch]);
+  }
+  return finite;
+}
+
+void Framebuffer::add(const Framebuffer& other) {
+  for (std::size_t i = 0; i < fixed_.size(); ++i) fixed_[i] += other.fixed_[i];
+}
+
+double Framebuffer::sampleChannel(std::size_t sample, int channel) const {
+  return double(fixed_[sample * 3 + channel]) / kFixedScale;
+}
+
+Image Framebuffer::resolve(const View& view) const {
+  Image image = Image::filled(view.width(), view.height());
+  const bool corners = view.sampling() == Sampling::Corners;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      Color c(0);
+      for (int ch = 0; ch < 3; ++ch) {
+        if (corners) {
+          // Sum the four corners in fixed point first, so the mean is exact up to one rounding.
+          const std::int64_t sum =
+              fixed_[view.sampleIndex(x, y) * 3 + ch] + fixed_[view.sampleIndex(x + 1, y) * 3 + ch] +
+              fixed_[view.sampleIndex(x, y + 1) * 3 + ch] + fixed_[view.sampleIndex(x + 1, y + 1) * 3 + ch];
+          c[ch] = double(sum) / (4 * kFixedScale);
+        } else {
+          c[ch] = sampleChannel(view.sampleIndex(x, y), ch);
+        }
+      }
+      image.at(x, y) = c;
+    }
+  }
+  return image;
+}
+
+}  // namespace raycube::core

@@ -1,0 +1,39 @@
+#pragma once
+// A ray of the ray tree, carrying everything the paper's `rayon` message carries (section 3.5.2):
+// the original origin and direction keep the ray's identity wherever it travels.
+#include <cstdint>
+
+#include "core/vec.h"
+
+namespace raycube::core {
+
+enum class RayKind : std::uint8_t { Eye = 0, Reflected = 1, Refracted = 2, Shadow = 3 };
+inline constexpr int kRayKinds = 4;
+
+struct Ray {
+  Vec3 origin{0, 0, 0};
+  Vec3 direction{0, 0, 1};  // unit length
+  double tMin = 0;          // eye rays: hither; spawned rays: 0 (their origin is already offset)
+  double tMax = 0;          // shadow rays: distance to the light (the paper's maxlum); others: infinity
+
+  Vec3 at(double t) const { return origin + t * direction; }
+};
+
+// A ray with its place in the tree (Priol & Bouatouch 3.4): the cumulated Ks/Kt product `coeff`, and for a
+// shadow ray the light term it will deliver, scaled by the transmission it finds (the paper's att).
+struct TracedRay {
+  Ray ray;
+  Color weight{0, 0, 0};  // shadow rays only: coeff * light * (diffuse + specular)
+  double coeff = 1;       // cumulated product of Ks and T along the path
+  std::uint32_t sample = 0;
+  std::uint8_t depth = 1;  // the eye ray has depth 1 (SPD rule 7)
+  RayKind kind = RayKind::Eye;
+};
+
+// A piece of a sample's colour: the host adds these up in any order (section 3.4).
+struct Contribution {
+  std::uint32_t sample = 0;
+  Color value{0, 0, 0};
+};
+
+}  // namespace raycube::core

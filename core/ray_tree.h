@@ -1,0 +1,57 @@
+#pragma once
+// Tracing one sample's whole ray tree on one thread, against any database query (BruteForce, Bvh): the
+// sequential form of what the machine does with messages. Rays are taken from a stack; the order does not
+// matter because contributions are summed in fixed point.
+#include <vector>
+
+#include "core/framebuffer.h"
+#include "core/trace_stats.h"
+#include "core/whitted.h"
+
+namespace raycube::core {
+
+struct RayTreeScratch {
+  RayOutcome outcome;
+  std::vector<TracedRay> pending;
+  std::vector<Hit> crossed;
+};
+
+template <class Database>
+void traceRayTree(const Whitted& shading, const Database& database, const TracedRay& eye, Framebuffer& frame,
+                  TraceCounters& counters, RayTreeScratch& scratch) {
+  scratch.pending.clear();
+  scratch.pending.push_back(eye);
+  while (!scratch.pending.empty()) {
+    const TracedRay ray = scratch.pending.back();
+    scratch.pending.pop_back();
+    ++counters.of(ray.kind);
+    scratch.outcome.clear();
+    if (ray.kind == RayKind::Shadow) {
+      shading.finishShadow(ray, database.transmission(ray.ray, counters, scratch.crossed), scratch.outcome);
+    } else {
+      const Hit hit = database.closestHit(ray.ray, counters);
+      if (hit.found())
+        shading.shadeHit(ray, hit, scratch.outcome);
+      else
+        shading.shadeMiss(ray, scratch.outcome);
+    }
+    for (const Contribution& c : scratch.outcome.contributions) {
+      ++counters.contributions;
+      if (!frame.add(c)) ++counters.nonFinite;
+    }
+    for (const TracedRay& r : scratch.outcome.spawned) scratch.pending.push_back(r);
+  }
+}
+
+// The eye ray of sample (sx, sy) as the root of its tree.
+inline TracedRay eyeRayOf(const View& view, int sx, int sy) {
+  TracedRay r;
+  r.ray = view.eyeRay(sx, sy);
+  r.sample = view.sampleIndex(sx, sy);
+  r.kind = RayKind::Eye;
+  r.depth = 1;
+  r.coeff = 1;
+  return r;
+}
+
+}  // namespace raycube::core

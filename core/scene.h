@@ -1,0 +1,97 @@
+#pragma once
+// The scene as NFF describes it (shared/spd/NFF.TXT): one camera, a background, positional lights,
+// materials ("f" lines) and primitives. The renderers and the machine read only this.
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "core/vec.h"
+
+namespace raycube::core {
+
+// NFF "v" block. angle is the field of view in degrees between the centres of the top and bottom pixel rows.
+struct Camera {
+  Vec3 from{0, 0, 0};
+  Vec3 at{0, 0, -1};
+  Vec3 up{0, 1, 0};
+  double angleDegrees = 45;
+  double hither = 0;
+  int width = 512;
+  int height = 512;
+};
+
+// NFF "l": hasColor is false when the file gives no colour; intensities then follow SPD's sqrt(L)/(2L).
+struct Light {
+  Vec3 position{0, 0, 0};
+  Color color{1, 1, 1};
+  bool hasColor = false;
+};
+
+// NFF "f": colour, Kd, Ks, Phong exponent, transmittance T and index of refraction.
+struct Material {
+  Color color{1, 1, 1};
+  double kd = 0;
+  double ks = 0;
+  double shine = 0;
+  double transmittance = 0;
+  double ior = 1;
+};
+
+// NFF "s". A negative radius in the file (inside visible) is kept as insideVisible with a positive radius.
+struct Sphere {
+  Vec3 center{0, 0, 0};
+  double radius = 1;
+};
+
+// NFF "c": open cone or cylinder, no caps.
+struct Cone {
+  Vec3 base{0, 0, 0};
+  double baseRadius = 1;
+  Vec3 apex{0, 0, 1};
+  double apexRadius = 1;
+};
+
+// NFF "p": planar convex-or-not polygon, counter-clockwise; normal from the first three vertices.
+struct Polygon {
+  std::vector<Vec3> vertices;
+};
+
+// NFF "pp": polygon with per-vertex normals for smooth shading (triangles in the SPD).
+struct Patch {
+  std::vector<Vec3> vertices;
+  std::vector<Vec3> normals;
+};
+
+using Shape = std::variant<Sphere, Cone, Polygon, Patch>;
+
+// One primitive of the database: its shape and the material in force when it was read.
+struct Object {
+  Shape shape;
+  std::uint32_t material = 0;
+  bool insideVisible = false;  // negative radius in NFF
+};
+
+// What a scene uses, so a renderer never pays for a feature it does not need.
+struct SceneFeatures {
+  bool transmission = false;  // some material has T > 0
+  bool reflection = false;    // some material has Ks > 0
+  bool cones = false;
+  bool patches = false;
+  bool polygons = false;
+  bool spheres = false;
+  std::size_t lightCount = 0;
+};
+
+struct Scene {
+  std::string name;
+  Camera camera;
+  Color background{0, 0, 0};
+  std::vector<Light> lights;
+  std::vector<Material> materials;
+  std::vector<Object> objects;
+
+  SceneFeatures features() const;
+};
+
+}  // namespace raycube::core

@@ -1,0 +1,54 @@
+#pragma once
+// The eye, the screen and the samples: where eye rays go (SPD rule 6, NFF "v").
+// Screen coordinates (u, v) are x/z and y/z in the eye frame, so a plane u = c is a plane through the eye:
+// the faces of the paper's pyramidal regions (section 3.1).
+#include <cstdint>
+
+#include "core/ray.h"
+#include "core/scene.h"
+
+namespace raycube::core {
+
+enum class Sampling : std::uint8_t {
+  Centers,  // one eye ray through each pixel centre
+  Corners,  // SPD rule 6: (W+1) x (H+1) eye rays through pixel corners, four averaged per pixel
+};
+
+class View {
+ public:
+  View(const Camera& camera, int width, int height, Sampling sampling);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Sampling sampling() const { return sampling_; }
+  // The grid of eye-ray sample points: W x H for centres, (W+1) x (H+1) for corners.
+  int samplesX() const { return samplesX_; }
+  int samplesY() const { return samplesY_; }
+  std::uint32_t sampleIndex(int sx, int sy) const { return std::uint32_t(sy) * samplesX_ + sx; }
+
+  // Screen coordinates of the sample column sx / row sy, and of the boundary before column/row k
+  // (k = 0 .. samples), which the region and cell grids use: each sample lies inside its boundaries.
+  double sampleU(int sx) const;
+  double sampleV(int sy) const;
+  double boundaryU(int k) const { return sampleU(k) - 0.5 * pitch_; }
+  double boundaryV(int k) const { return sampleV(k) + 0.5 * pitch_; }
+
+  Ray eyeRay(int sx, int sy) const;
+
+  // The eye frame: x right, y up, z forward (depth).
+  Vec3 toEye(const Vec3& world) const;
+  Vec3 directionToEye(const Vec3& direction) const;
+  const Vec3& eye() const { return eye_; }
+  double hither() const { return hither_; }
+
+ private:
+  int width_, height_;
+  Sampling sampling_;
+  int samplesX_, samplesY_;
+  Vec3 eye_, right_, up_, forward_;
+  double pitch_;        // screen units between adjacent pixel centres
+  double offsetPixels_; // sample sx sits at pixel coordinate sx - offsetPixels_
+  double hither_;
+};
+
+}  // namespace raycube::core

@@ -1,0 +1,67 @@
+#pragma once
+// The Whitted illumination model exactly as the SPD testing rules specify, in the contribution form of
+// Priol & Bouatouch section 3.4: every sample's colour is a sum of (Ks/Kt product) x (local term)
+// pieces, so no intensity ever travels back along a ray's path and the host can add them in any order.
+//
+// At a hit with material (C, Kd, Ks, Shine, T, ior), for a ray carrying coeff:
+//   ambient     coeff * A * Kd * C                                   sent at once
+//   per light   coeff * I * (Kd * C * (N.L) + Ks * max(0, R.V)^Shine) * transmission(P -> light)
+//               a shadow ray per light with N.L > 0 carries the bracket as its weight
+//   reflection  a ray with coeff * Ks when Ks > 0 and depth < maxDepth
+//   refraction  a ray with coeff * T when T > 0 and depth < maxDepth (Snell); on total internal reflection
+//               no refraction ray, and the reflected ray carries coeff * (Ks + T) so no energy is lost
+// A ray that hits nothing contributes coeff * background. I = A = sqrt(L) / (2 L) for L lights, unless the
+// file gives the light a colour. N faces the incoming ray.
+#include <vector>
+
+#include "core/intersect.h"
+#include "core/ray.h"
+#include "core/scene.h"
+
+namespace raycube::core {
+
+struct ShadingOptions {
+  int maxDepth = 5;  // SPD rule 7: the eye ray has depth 1
+};
+
+// What one ray produces: contributions for the host and rays for the tree. Reused to avoid allocation.
+struct RayOutcome {
+  std::vector<Contribution> contributions;
+  std::vector<TracedRay> spawned;
+  void clear() {
+    contributions.clear();
+    spawned.clear();
+  }
+};
+
+class Whitted {
+ public:
+  Whitted(const Scene& scene, ShadingOptions options);
+
+  // Section 3.4: the local term at a hit and the rays it spawns.
+  void shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) const;
+  void shadeMiss(const TracedRay& ray, RayOutcome& out) const;
+  // A shadow ray that found `transmission` (product of T over the objects it crossed, in t order).
+  void finishShadow(const TracedRay& ray, double transmission, RayOutcome& out) const;
+
+  const Scene& scene() const { return scene_; }
+  bool transmissive(std::uint32_t object) const { return transmittanceOf(object) > 0; }
+  double transmittanceOf(std::uint32_t object) const {
+    return scene_.materials[scene_.objects[object].material].transmittance;
+  }
+  // The scene has some material with T > 0: shadow rays must multiply transmittances, not stop at the first hit.
+  bool sceneTransmits() const { return sceneTransmits_; }
+  int maxDepth() const { return options_.maxDepth; }
+
+ private:
+  const Scene& scene_;
+  ShadingOptions options_;
+  std::vector<Color> lightIntensity_;
+  double ambient_;
+  bool sceneTransmits_;
+};
+
+// Offset a spawned ray's origin off the surface, scale-aware (see kSpawnOffsetRelative).
+Vec3 spawnOrigin(const Vec3& point, const Vec3& sideNormal, double travelled);
+
+}  // namespace raycube::core

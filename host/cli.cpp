@@ -1,0 +1,144 @@
+#include "host/cli.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "core/balls.h"
+#include "core/image.h"
+#include "core/nff_reader.h"
+#include "host/sequential_renderers.h"
+#include "host/stats_report.h"
+
+namespace raycube::host {
+namespace {
+
+struct RenderCommand {
+  std::string scenePath;
+  int balls = 0;
+  std::string size;
+  int depth = 5;
+  RenderMode mode = RenderMode::ImageParallel;
+  int threads = 0;
+  core::Sampling sampling = core::Sampling::Centers;
+  std::string output;
+  std::string statsPath;
+  bool quiet = false;
+};
+
+// "WxH" with both sides in [1, kMaxImageSide].
+std::pair<int, int> parseSize(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 ||
+      h < 1 || w > core::kMaxNffResolution || h > core::kMaxNffResolution)
+    throw CLI::ValidationError("--size", fmt::format("expected WxH with 1 <= W, H <= {}, got '{}'",
+                                                     core::kMaxNffResolution, text));
+  return {w, h};
+}
+
+core::Scene loadScene(const RenderCommand& cmd) {
+  if (!cmd.scenePath.empty()) return core::readNff(cmd.scenePath);
+  return core::makeBalls(cmd.balls > 0 ? cmd.balls : 2);  // the default scene: the paper's balls, size 2
+}
+
+RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const RenderSettings& settings) {
+  switch (cmd.mode) {
+    case RenderMode::Reference: return renderReference(scene, settings);
+    case RenderMode::ImageParallel: return renderImageParallel(scene, settings);
+    case RenderMode::Machine: break;
+  }
+  throw std::invalid_argument("--mode machine is not available in this build");
+}
+
+void writeOutputs(const core::Image& image, const core::Scene& scene, const std::string& output) {
+  if (!output.empty()) {
+    const std::filesystem::path path(output);
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    core::writeImage(image, path);
+    std::cout << "wrote " << path.string() << '\n';
+    return;
+  }
+  std::filesystem::create_directories("out");
+  for (const char* ext : {".exr", ".png"}) {
+    const std::filesystem::path path = std::filesystem::path("out") / (scene.name + ext);
+    core::writeImage(image, path);
+    std::cout << "wrote " << path.string() << '\n';
+  }
+}
+
+int runRender(const RenderCommand& cmd) {
+  const core::Scene scene = loadScene(cmd);
+  RenderSettings settings;
+  settings.width = scene.camera.width;
+  settings.height = scene.camera.height;
+  if (!cmd.size.empty()) std::tie(settings.width, settings.height) = parseSize(cmd.size);
+  settings.sampling = cmd.sampling;
+  settings.shading.maxDepth = cmd.depth;
+  settings.threads = cmd.threads;
+  settings.progress = !cmd.quiet;
+  const RenderResult result = render(scene, cmd, settings);
+  writeOutputs(result.image, scene, cmd.output);
+  if (!cmd.statsPath.empty()) writeJson(statsJson(scene, result), cmd.statsPath);
+  std::cout << summaryText(scene, result);
+  return result.counters.nonFinite > 0 ? 3 : 0;
+}
+
+void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
+  CLI::App* render = app.add_subcommand("render", "Render a scene to OpenEXR and PNG");
+  render->add_option("scene", cmd.scenePath, "NFF scene file (default: the built-in balls scene)")
+      ->check(CLI::ExistingFile);
+  render->add_option("--balls", cmd.balls, "Built-in SPD balls (sphereflake) scene of this size (1-6)")
+      ->check(CLI::Range(1, 6));
+  render->add_option("--size", cmd.size, "Image size WxH (overrides the file's resolution)");
+  render->add_option("--depth", cmd.depth, "Maximum ray tree depth, the eye ray being depth 1")
+      ->check(CLI::Range(1, 64));
+  const std::map<std::string, RenderMode> modes{{"reference", RenderMode::Reference},
+                                                {"image-parallel", RenderMode::ImageParallel},
+                                                {"machine", RenderMode::Machine}};
+  render->add_option("--mode", cmd.mode, "reference | image-parallel")
+      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+  render->add_option("--threads", cmd.threads, "Worker threads for image-parallel (0 = all cores)")
+      ->check(CLI::Range(0, 1024));
+  const std::map<std::string, core::Sampling> samplings{{"centers", core::Sampling::Centers},
+                                                        {"corners", core::Sampling::Corners}};
+  render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
+      ->transform(CLI::CheckedTransformer(samplings, CLI::ignore_case));
+  render->add_option("-o,--output", cmd.output, "Output image (.exr or .png); default: out/<scene>.exr and .png");
+  render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
+  render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
+  render->get_option("--balls")->excludes("scene");
+}
+
+}  // namespace
+
+int runCommandLine(int argc, char** argv) {
+  CLI::App app{"raycube: Priol & Bouatouch's hypercube ray tracer (INRIA RR-0843, 1988), emulated"};
+  app.require_subcommand(1);
+  RenderCommand renderCmd;
+  addRenderCommand(app, renderCmd);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("render")) return runRender(renderCmd);
+  } catch (const CLI::ValidationError& e) {
+    std::cerr << "raycube: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "raycube: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace raycube::host

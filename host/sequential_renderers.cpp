@@ -1,0 +1,84 @@
+#include "host/sequential_renderers.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <optional>
+
+#include "core/brute_force.h"
+#include "core/bvh.h"
+#include "core/ray_tree.h"
+#include "host/progress.h"
+
+namespace raycube::host {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Traces sample rows [rowBegin, rowEnd) into the frame buffer.
+template <class Database>
+void traceRows(const core::View& view, const core::Whitted& shading, const Database& database, int rowBegin,
+               int rowEnd, core::Framebuffer& frame, core::TraceCounters& counters, Progress& progress) {
+  core::RayTreeScratch scratch;
+  for (int sy = rowBegin; sy < rowEnd; ++sy) {
+    for (int sx = 0; sx < view.samplesX(); ++sx)
+      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), frame, counters, scratch);
+    progress.advance(std::uint64_t(view.samplesX()));
+  }
+}
+
+}  // namespace
+
+RenderResult renderReference(const core::Scene& scene, const RenderSettings& settings) {
+  const auto start = Clock::now();
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling);
+  const core::Whitted shading(scene, settings.shading);
+  const core::BruteForce database(scene, shading);
+  core::Framebuffer frame(view.samplesX(), view.samplesY());
+  RenderResult result;
+  result.mode = "reference";
+  result.preprocessSeconds = secondsSince(start);
+  const auto traceStart = Clock::now();
+  {
+    Progress progress("reference", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
+    traceRows(view, shading, database, 0, view.samplesY(), frame, result.counters, progress);
+  }
+  result.image = frame.resolve(view);
+  result.traceSeconds = secondsSince(traceStart);
+  return result;
+}
+
+RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings& settings) {
+  const auto start = Clock::now();
+  std::optional<tbb::global_control> limit;
+  if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling);
+  const core::Whitted shading(scene, settings.shading);
+  const core::Bvh database(scene, shading);
+  core::Framebuffer frame(view.samplesX(), view.samplesY());
+  RenderResult result;
+  result.mode = "image-parallel";
+  result.workers = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  result.preprocessSeconds = secondsSince(start);
+  const auto traceStart = Clock::now();
+  tbb::combinable<core::TraceCounters> counters;
+  {
+    Progress progress("image-parallel", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
+    // Each sample row belongs to exactly one task, so frame buffer slots never have two writers.
+    tbb::parallel_for(tbb::blocked_range<int>(0, view.samplesY(), 4), [&](const tbb::blocked_range<int>& rows) {
+      traceRows(view, shading, database, rows.begin(), rows.end(), frame, counters.local(), progress);
+    });
+  }
+  counters.combine_each([&](const core::TraceCounters& c) { result.counters += c; });
+  result.image = frame.resolve(view);
+  result.traceSeconds = secondsSince(traceStart);
+  return result;
+}
+
+}  // namespace raycube::host
