@@ -31,30 +31,31 @@ struct Box {
   }
 };
 
-// Reciprocal direction for slab tests; IEEE gives +-inf for zero components, which the test handles.
+// A ray prepared for many slab tests: reciprocal direction (IEEE gives +-inf for zero components) and the
+// index of the near plane per axis, so the test needs no swaps.
 struct InverseDirection {
-  explicit InverseDirection(const Vec3& d) : inv(1.0 / d.x, 1.0 / d.y, 1.0 / d.z) {}
+  explicit InverseDirection(const Vec3& d) : inv(1.0 / d.x, 1.0 / d.y, 1.0 / d.z) {
+    for (int a = 0; a < 3; ++a) negative[a] = inv[a] < 0;
+  }
   Vec3 inv;
+  bool negative[3];
 };
 
-// Robust slab test (Ize, "Robust BVH ray traversal", 2013): no NaN from 0*inf because an origin exactly on
-// a slab plane with a zero direction component gives (0 * inf) only when the box is degenerate, which
-// padded() rules out; the far distance is widened by 2 gamma(3) so rounding never culls a true hit.
+// Robust slab test (Ize, "Robust BVH ray traversal", 2013): the far distance is widened by 2 gamma(3) so
+// rounding never culls a true hit. A NaN from (0 * inf), an origin exactly on the plane of a slab the ray
+// runs parallel to, fails every comparison and leaves [t0, t1] unconstrained by that slab.
 inline bool slabsHit(const Box& box, const Vec3& origin, const InverseDirection& id, double tMin,
                      double tMax, double& tEnter) {
+  const Vec3* planes = &box.lo;  // planes[0] = lo, planes[1] = hi
   double t0 = tMin, t1 = tMax;
   for (int a = 0; a < 3; ++a) {
-    double tNear = (box.lo[a] - origin[a]) * id.inv[a];
-    double tFar = (box.hi[a] - origin[a]) * id.inv[a];
-    if (tNear > tFar) std::swap(tNear, tFar);
-    tFar *= 1 + 2 * 3 * 0x1p-53;
-    // NaN (0 * inf) comparisons are false, leaving t0/t1 unchanged: the slab does not constrain.
+    const double tNear = (planes[id.negative[a]][a] - origin[a]) * id.inv[a];
+    const double tFar = (planes[!id.negative[a]][a] - origin[a]) * id.inv[a] * (1 + 2 * 3 * 0x1p-53);
     t0 = tNear > t0 ? tNear : t0;
     t1 = tFar < t1 ? tFar : t1;
-    if (t0 > t1) return false;
   }
   tEnter = t0;
-  return true;
+  return t0 <= t1;
 }
 
 }  // namespace raycube::core

@@ -7,7 +7,7 @@
 namespace raycube::core {
 
 namespace {
-constexpr std::uint32_t kLeafSize = 2;
+constexpr std::uint32_t kLeafSize = 1;
 }
 
 Bvh::Bvh(const Scene& scene, const Whitted& shading) : scene_(scene), shading_(shading) {
@@ -20,7 +20,20 @@ Bvh::Bvh(const Scene& scene, const Whitted& shading) : scene_(scene), shading_(s
   if (!order_.empty()) build(boxes, 0, std::uint32_t(order_.size()));
 }
 
-// Median split on the widest axis of the centroids.
+namespace {
+
+double halfArea(const Box& b) {
+  if (b.empty()) return 0;
+  const Vec3 e = b.extent();
+  return e.x * e.y + e.y * e.z + e.z * e.x;
+}
+
+constexpr int kBins = 16;
+constexpr double kTraversalCost = 1.0;  // relative to one ray-object test
+
+}  // namespace
+
+// Binned surface-area heuristic over object centroids (Wald 2007); a leaf when no split pays.
 std::uint32_t Bvh::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end) {
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
@@ -30,21 +43,58 @@ std::uint32_t Bvh::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint
     centroids.extend(boxes[order_[i]].center());
   }
   nodes_[index].box = bounds;
-  const Vec3 spread = centroids.extent();
-  const int axis = spread.x > spread.y ? (spread.x > spread.z ? 0 : 2) : (spread.y > spread.z ? 1 : 2);
-  if (end - begin <= kLeafSize || spread[axis] <= 0) {
+  const std::uint32_t count = end - begin;
+  int bestAxis = -1, bestBin = 0;
+  double bestCost = double(count);  // cost of a leaf, in object tests
+  for (int axis = 0; axis < 3 && count > kLeafSize; ++axis) {
+    const double lo = centroids.lo[axis], width = centroids.hi[axis] - lo;
+    if (!(width > 0)) continue;
+    Box binBox[kBins];
+    std::uint32_t binCount[kBins] = {};
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const int b = std::min(kBins - 1, int(kBins * (boxes[order_[i]].center()[axis] - lo) / width));
+      binBox[b].extend(boxes[order_[i]]);
+      ++binCount[b];
+    }
+    double rightArea[kBins];
+    std::uint32_t rightCount[kBins];
+    Box acc;
+    std::uint32_t n = 0;
+    for (int b = kBins - 1; b > 0; --b) {
+      acc.extend(binBox[b]);
+      n += binCount[b];
+      rightArea[b] = halfArea(acc);
+      rightCount[b] = n;
+    }
+    acc = Box{};
+    n = 0;
+    for (int b = 0; b < kBins - 1; ++b) {
+      acc.extend(binBox[b]);
+      n += binCount[b];
+      if (n == 0 || rightCount[b + 1] == 0) continue;
+      const double cost =
+          kTraversalCost + (halfArea(acc) * n + rightArea[b + 1] * rightCount[b + 1]) / halfArea(bounds);
+      if (cost < bestCost) {
+        bestCost = cost;
+        bestAxis = axis;
+        bestBin = b;
+      }
+    }
+  }
+  if (bestAxis < 0) {
     nodes_[index].first = begin;
-    nodes_[index].count = end - begin;
+    nodes_[index].count = count;
     return index;
   }
-  const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(
-      order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-      [&](std::uint32_t a, std::uint32_t b) { return boxes[a].center()[axis] < boxes[b].center()[axis]; });
+  const double lo = centroids.lo[bestAxis], width = centroids.hi[bestAxis] - lo;
+  const auto midIt = std::partition(order_.begin() + begin, order_.begin() + end, [&](std::uint32_t o) {
+    return std::min(kBins - 1, int(kBins * (boxes[o].center()[bestAxis] - lo) / width)) <= bestBin;
+  });
+  const std::uint32_t mid = std::uint32_t(midIt - order_.begin());
   build(boxes, begin, mid);
   const std::uint32_t right = build(boxes, mid, end);
   nodes_[index].first = right;
-  nodes_[index].axis = std::uint8_t(axis);
+  nodes_[index].axis = std::uint8_t(bestAxis);
   return index;
 }
 
@@ -54,27 +104,36 @@ template <class Visit>
 void Bvh::traverse(const Ray& ray, const double& tLimit, TraceCounters& counters, Visit&& visit) const {
   if (nodes_.empty()) return;
   const InverseDirection inv(ray.direction);
-  std::uint32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    ++counters.boxTests;
+  struct Entry {
+    std::uint32_t node;
     double tEnter;
-    if (!slabsHit(node.box, ray.origin, inv, ray.tMin, tLimit, tEnter)) continue;
+  };
+  Entry stack[64];
+  int top = 0;
+  double tEnter;
+  ++counters.boxTests;
+  if (!slabsHit(nodes_[0].box, ray.origin, inv, ray.tMin, tLimit, tEnter)) return;
+  stack[top++] = Entry{0, tEnter};
+  while (top > 0) {
+    const Entry entry = stack[--top];
+    if (entry.tEnter > tLimit) continue;
+    const Node& node = nodes_[entry.node];
     if (node.count > 0) {
       for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
         if (!visit(order_[i])) return;
       continue;
     }
-    const std::uint32_t left = std::uint32_t(&node - nodes_.data()) + 1;
-    if (ray.direction[node.axis] < 0) {
-      stack[top++] = left;
-      stack[top++] = node.first;
-    } else {
-      stack[top++] = node.first;
-      stack[top++] = left;
+    const std::uint32_t children[2] = {entry.node + 1, node.first};
+    double tChild[2];
+    bool hit[2];
+    for (int c = 0; c < 2; ++c) {
+      ++counters.boxTests;
+      hit[c] = slabsHit(nodes_[children[c]].box, ray.origin, inv, ray.tMin, tLimit, tChild[c]);
     }
+    // Push the farther child first so the nearer one is visited next.
+    const int nearFirst = (hit[0] && hit[1] && tChild[1] < tChild[0]) ? 1 : 0;
+    for (int k : {1 - nearFirst, nearFirst})
+      if (hit[k]) stack[top++] = Entry{children[k], tChild[k]};
   }
 }
 
