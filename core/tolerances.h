@@ -17,3 +17,12 @@ inline constexpr double kBoxPaddingRelative = 0x1p-30;
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 }  // namespace raycube::core
+
+namespace raycube::core {
+
+// The machine assigns objects to regions and cells by their eye-frame boxes widened by this fraction
+// (of the coordinate's magnitude, plus one for screen coordinates): conservative against the rounding
+// of plane crossings, so a hit always lies in a cell that holds its object.
+inline constexpr double kCellMarginRelative = 0x1p-30;
+
+}  // namespace raycube::core

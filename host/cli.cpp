@@ -14,11 +14,15 @@
 #include "core/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
+#include "host/machine.h"
 #include "host/sequential_renderers.h"
 #include "host/stats_report.h"
 
 namespace raycube::host {
 namespace {
+
+// 16x16 is the paper's 256 processors squared; 64x64 leaves room without exhausting threads.
+constexpr int kMaxProcessorsPerSide = 64;
 
 struct RenderCommand {
   std::string scenePath;
@@ -31,17 +35,18 @@ struct RenderCommand {
   std::string output;
   std::string statsPath;
   bool quiet = false;
+  std::string procs = "4x4";
+  MachineSettings machine;
 };
 
-// "WxH" with both sides in [1, kMaxImageSide].
-std::pair<int, int> parseSize(const std::string& text) {
-  int w = 0, h = 0;
+// "AxB" with both in [1, limit]; what names the option in the error.
+std::pair<int, int> parsePair(const std::string& text, const char* what, const char* form, int limit) {
+  int a = 0, b = 0;
   char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 ||
-      h < 1 || w > core::kMaxNffResolution || h > core::kMaxNffResolution)
-    throw CLI::ValidationError("--size", fmt::format("expected WxH with 1 <= W, H <= {}, got '{}'",
-                                                     core::kMaxNffResolution, text));
-  return {w, h};
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a < 1 ||
+      b < 1 || a > limit || b > limit)
+    throw CLI::ValidationError(what, fmt::format("expected {} with both between 1 and {}, got '{}'", form, limit, text));
+  return {a, b};
 }
 
 core::Scene loadScene(const RenderCommand& cmd) {
@@ -53,9 +58,13 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
   switch (cmd.mode) {
     case RenderMode::Reference: return renderReference(scene, settings);
     case RenderMode::ImageParallel: return renderImageParallel(scene, settings);
-    case RenderMode::Machine: break;
+    case RenderMode::Machine: {
+      MachineSettings machine = cmd.machine;
+      std::tie(machine.rows, machine.columns) = parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
+      return renderMachine(scene, settings, machine);
+    }
   }
-  throw std::invalid_argument("--mode machine is not available in this build");
+  throw std::invalid_argument("unknown mode");
 }
 
 void writeOutputs(const core::Image& image, const core::Scene& scene, const std::string& output) {
@@ -79,7 +88,8 @@ int runRender(const RenderCommand& cmd) {
   RenderSettings settings;
   settings.width = scene.camera.width;
   settings.height = scene.camera.height;
-  if (!cmd.size.empty()) std::tie(settings.width, settings.height) = parseSize(cmd.size);
+  if (!cmd.size.empty())
+    std::tie(settings.width, settings.height) = parsePair(cmd.size, "--size", "WxH", core::kMaxNffResolution);
   settings.sampling = cmd.sampling;
   settings.shading.maxDepth = cmd.depth;
   settings.threads = cmd.threads;
@@ -103,7 +113,7 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
   const std::map<std::string, RenderMode> modes{{"reference", RenderMode::Reference},
                                                 {"image-parallel", RenderMode::ImageParallel},
                                                 {"machine", RenderMode::Machine}};
-  render->add_option("--mode", cmd.mode, "reference | image-parallel")
+  render->add_option("--mode", cmd.mode, "machine (message passing) | reference | image-parallel")
       ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
   render->add_option("--threads", cmd.threads, "Worker threads for image-parallel (0 = all cores)")
       ->check(CLI::Range(0, 1024));
@@ -111,10 +121,35 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
                                                         {"corners", core::Sampling::Corners}};
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
       ->transform(CLI::CheckedTransformer(samplings, CLI::ignore_case));
+  render->add_option("--procs", cmd.procs, "Logical processors of the machine as RxC (rows x columns)");
+  render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
+      ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
+  render->add_option("--cell-level", cmd.machine.cellLevel, "Recursive halvings of each pixel area into super-cells")
+      ->check(CLI::Range(0, 8));
   render->add_option("-o,--output", cmd.output, "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
   render->get_option("--balls")->excludes("scene");
+}
+
+struct CompareCommand {
+  std::string first, second;
+};
+
+// `raycube compare A B`: how far apart two renders are; exit 0 only when bit-identical.
+int runCompare(const CompareCommand& cmd) {
+  const core::Image a = core::readImage(cmd.first), b = core::readImage(cmd.second);
+  const core::ImageDifference d = core::compareImages(a, b);
+  const bool identical = core::bitIdentical(a, b);
+  std::cout << fmt::format("rmse {:.3g}, psnr {:.2f} dB, max {:.3g}, pixels over 1/255: {}, {}\n", d.rmse, d.psnr,
+                           d.maxAbs, d.pixelsOver, identical ? "bit-identical" : "different");
+  return identical ? 0 : 1;
+}
+
+void addCompareCommand(CLI::App& app, CompareCommand& cmd) {
+  CLI::App* compare = app.add_subcommand("compare", "Compare two images (EXR or PNG); exit 0 if bit-identical");
+  compare->add_option("first", cmd.first, "First image")->required()->check(CLI::ExistingFile);
+  compare->add_option("second", cmd.second, "Second image")->required()->check(CLI::ExistingFile);
 }
 
 }  // namespace
@@ -124,6 +159,8 @@ int runCommandLine(int argc, char** argv) {
   app.require_subcommand(1);
   RenderCommand renderCmd;
   addRenderCommand(app, renderCmd);
+  CompareCommand compareCmd;
+  addCompareCommand(app, compareCmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -131,6 +168,7 @@ int runCommandLine(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("render")) return runRender(renderCmd);
+    if (app.got_subcommand("compare")) return runCompare(compareCmd);
   } catch (const CLI::ValidationError& e) {
     std::cerr << "raycube: " << e.what() << '\n';
     return 2;

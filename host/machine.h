@@ -1,0 +1,40 @@
+#pragma once
+// The message-passing machine (Priol & Bouatouch section 3): the host partitions the screen into an R x C
+// grid of pixel areas (3.1), prunes the database for each region (3.2 step 1), starts one thread per
+// logical processor, accumulates the contributions they send (3.4, 3.5.1) and stops when the token ring
+// has proved termination (3.6).
+#include <vector>
+
+#include "core/scene.h"
+#include "host/render_result.h"
+#include "host/render_settings.h"
+#include "node/logical_processor.h"
+#include "queues/queue_stats.h"
+
+namespace raycube::host {
+
+struct MachineSettings {
+  int rows = 4;
+  int columns = 4;
+  std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
+  int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
+};
+
+struct ProcessorReport {
+  node::NodeStats node;
+  std::array<queues::QueueStats, node::kFaces> outgoing;  // FIFOs it sends into
+};
+
+struct MachineReport {
+  MachineSettings settings;
+  std::vector<ProcessorReport> processors;
+  std::size_t messageBytes = sizeof(node::RayMessage);
+  std::uint64_t contributionsAccumulated = 0;
+  std::uint32_t probes = 0;       // token rounds
+  std::uint64_t tokenPasses = 0;  // token visits over all processors
+};
+
+RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings, const MachineSettings& machine,
+                           MachineReport* report = nullptr);
+
+}  // namespace raycube::host

@@ -1,0 +1,51 @@
+#pragma once
+// The machine's interconnect in one address space: a bounded lock-free FIFO per directed face (capacity
+// --queue-capacity, 128 as on the iPSC), a doorbell per processor, a token mailbox per processor on the
+// ring, and a block channel per processor to the host.
+#include <atomic>
+#include <memory>
+#include <vector>
+
+#include "node/region_map.h"
+#include "node/transport.h"
+#include "queues/doorbell.h"
+#include "queues/host_channel.h"
+#include "queues/spsc_queue.h"
+
+namespace raycube::host {
+
+using RayQueue = queues::SpscQueue<node::RayMessage, queues::Accounting::kOn>;
+using ContributionChannel = queues::HostChannel<core::Contribution, 256>;
+
+class SharedMemoryMachine {
+ public:
+  SharedMemoryMachine(const node::RegionMap& regions, std::size_t queueCapacity);
+  SharedMemoryMachine(const SharedMemoryMachine&) = delete;
+  SharedMemoryMachine& operator=(const SharedMemoryMachine&) = delete;
+
+  SharedMemoryMachine(SharedMemoryMachine&&) = delete;
+  ~SharedMemoryMachine();
+  node::Transport& endpoint(int processor);
+  ContributionChannel& hostChannel() { return channel_; }
+  bool terminated() const { return terminated_.load(std::memory_order_acquire); }
+  // Saturation of the FIFOs a processor sends into, one per face (absent faces stay zero).
+  queues::QueueStats outgoingStats(int processor, node::Face face) const;
+
+ private:
+  class Endpoint;
+  struct Mailbox {
+    std::atomic<bool> full{false};
+    node::Token token;
+  };
+
+  const node::RegionMap& regions_;
+  std::vector<std::unique_ptr<queues::Doorbell>> bells_;
+  // queues_[p * kFaces + f]: from processor p through its face f to the neighbour there
+  std::vector<std::unique_ptr<RayQueue>> queues_;
+  std::vector<std::unique_ptr<Mailbox>> mailboxes_;
+  ContributionChannel channel_;
+  std::atomic<bool> terminated_{false};
+  std::vector<std::unique_ptr<Endpoint>> endpoints_;
+};
+
+}  // namespace raycube::host

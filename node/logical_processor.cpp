@@ -1,0 +1,279 @@
+#include "node/logical_processor.h"
+
+#include <chrono>
+
+#include "core/transmission.h"
+
+namespace raycube::node {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kInboxBatch = 32;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+LogicalProcessor::LogicalProcessor(const MachineContext& context, NodeSetup setup, Transport& transport)
+    : context_(context),
+      setup_(std::move(setup)),
+      transport_(transport),
+      area_(context.regions.areaOf(setup_.id)),
+      cells_(area_, context.lines, setup_.cellLevel, setup_.objects, context.eyeBoxes),
+      inbox_(kInboxBatch) {
+  stats_.id = setup_.id;
+  stats_.area = area_;
+  stats_.objects = cells_.objectCount();
+  stats_.rearObjects = setup_.rearObjects.size();
+  stats_.cells = cells_.cellCount();
+  holdingToken_ = setup_.id == 0;  // 3.6: at the start processor 0 holds the token
+}
+
+// 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
+void LogicalProcessor::run() {
+  while (!transport_.terminated()) {
+    bool progressed = flushOverflow();
+    const std::size_t n = transport_.receive(inbox_);
+    for (std::size_t k = 0; k < n; ++k) onReceived(inbox_[k]);
+    progressed |= n > 0;
+    if (n == 0) progressed |= shootNextPrimary();
+    if (!progressed) onIdle();
+  }
+}
+
+bool LogicalProcessor::shootNextPrimary() {
+  if (nextPrimary_ >= area_.count()) return false;
+  const int sx = area_.x0 + int(nextPrimary_ % area_.width());
+  const int sy = area_.y0 + int(nextPrimary_ / area_.width());
+  ++nextPrimary_;
+  primariesShot_.store(nextPrimary_, std::memory_order_relaxed);
+  RayMessage m;
+  m.ray.ray = context_.view.eyeRay(sx, sy);
+  m.ray.sample = context_.view.sampleIndex(sx, sy);
+  m.ray.kind = core::RayKind::Eye;
+  m.tEnter = m.ray.ray.tMin;
+  m.destination = std::uint16_t(setup_.id);
+  ++stats_.spawned[std::size_t(core::RayKind::Eye)];
+  evaluate(m, true);
+  while (!local_.empty()) {
+    const RayMessage next = local_.back();
+    local_.pop_back();
+    evaluate(next, false);
+  }
+  return true;
+}
+
+// Tests `objects` for the part [ta, tb) of the ray's interval this cell owns. Closest-hit rays stop at the
+// first interval holding a hit; light rays multiply the transmittances they cross and stop at an opaque one.
+template <class Cells>
+bool LogicalProcessor::visitInterval(const core::TracedRay& ray, double ta, double tb, const Cells& objects,
+                                     core::Hit& hit, double& attenuation) {
+  const core::Scene& scene = context_.scene;
+  if (ray.kind == core::RayKind::Shadow) {
+    crossed_.clear();
+    for (std::uint32_t object : objects) {
+      ++stats_.processed.intersectionTests;
+      const double t = core::nearestHit(scene.objects[object], ray.ray, tb);
+      if (t < ta || t == core::kInfinity) continue;
+      if (!context_.shading.transmissive(object)) {
+        attenuation = 0;
+        return false;
+      }
+      crossed_.push_back(core::Hit{t, object});
+    }
+    if (!crossed_.empty()) attenuation = core::attenuate(attenuation, crossed_, context_.shading);
+    return attenuation > 0;
+  }
+  for (std::uint32_t object : objects) {
+    ++stats_.processed.intersectionTests;
+    const core::Hit h{core::nearestHit(scene.objects[object], ray.ray, tb), object};
+    if (h.t >= ta && h.t < core::kInfinity && h.closerThan(hit)) hit = h;
+  }
+  return !hit.found();
+}
+
+// evaluate_ray of 3.5.2: follow the ray through this region's cells from where it entered; it ends here
+// (hit, light reached, or escaped) or leaves through a face towards the processor whose region it enters.
+void LogicalProcessor::evaluate(RayMessage m, bool primary) {
+  const core::TracedRay& ray = m.ray;
+  ++stats_.processed.of(ray.kind);
+  const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
+  const double tMax = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
+  core::Hit hit;
+  double attenuation = m.attenuation;
+  double t = m.tEnter;
+  auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
+    return visitInterval(ray, ta, tb, objects, hit, attenuation);
+  };
+  for (;;) {
+    const double tEnd = std::min(er.partEnd(t), tMax);
+    if (!er.inFront(t)) {
+      // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
+      if (t < tEnd && !visit(t, tEnd, setup_.rearObjects)) return finishRay(ray, hit, attenuation);
+      if (tEnd >= tMax || er.partEnd(t) == core::kInfinity) return finishRay(ray, hit, attenuation);
+      t = tEnd;
+      const int owner = context_.regions.ownerAt(er, t);
+      if (owner != setup_.id) {
+        m.tEnter = t;
+        m.attenuation = attenuation;
+        m.destination = std::uint16_t(owner);
+        return send(m);
+      }
+      continue;
+    }
+    int column, row;
+    if (primary) {
+      cells_.locateSample(int(ray.sample % context_.view.samplesX()), int(ray.sample / context_.view.samplesX()),
+                          column, row);
+    } else {
+      cells_.locate(er, t, column, row);
+    }
+    RegionExit exit;
+    const WalkResult result = cells_.walk(er, t, tEnd, column, row, visit, exit, stats_.processed.boxTests);
+    if (result == WalkResult::Stopped) return finishRay(ray, hit, attenuation);
+    if (result == WalkResult::Finished) {
+      if (tEnd >= tMax || er.partEnd(t) == core::kInfinity) return finishRay(ray, hit, attenuation);
+      t = tEnd;  // on to the rear part
+      continue;
+    }
+    const int r = context_.regions.rowOf(setup_.id) + exit.qStep;
+    const int c = context_.regions.columnOf(setup_.id) + exit.sStep;
+    m.tEnter = exit.t;
+    m.attenuation = attenuation;
+    m.destination = std::uint16_t(context_.regions.idOf(r, c));
+    return send(m);
+  }
+}
+
+void LogicalProcessor::finishRay(const core::TracedRay& ray, const core::Hit& hit, double attenuation) {
+  ++stats_.finished[std::size_t(ray.kind)];
+  outcome_.clear();
+  if (ray.kind == core::RayKind::Shadow)
+    context_.shading.finishShadow(ray, attenuation, outcome_);
+  else if (hit.found())
+    context_.shading.shadeHit(ray, hit, outcome_);
+  else
+    context_.shading.shadeMiss(ray, outcome_);
+  deliver(outcome_);
+}
+
+// 3.4: contributions go straight to the host; new rays start where they are born.
+void LogicalProcessor::deliver(const core::RayOutcome& outcome) {
+  for (const core::Contribution& c : outcome.contributions) {
+    ++stats_.processed.contributions;
+    if (!std::isfinite(c.value.x + c.value.y + c.value.z)) ++stats_.processed.nonFinite;
+    transport_.sendContribution(c);
+  }
+  for (const core::TracedRay& spawned : outcome.spawned) {
+    ++stats_.spawned[std::size_t(spawned.kind)];
+    RayMessage m;
+    m.ray = spawned;
+    m.tEnter = spawned.ray.tMin;
+    const EyeFrameRay er = EyeFrameRay::of(spawned.ray, context_.view);
+    const int owner = er.inFront(m.tEnter) ? context_.regions.ownerAt(er, m.tEnter) : setup_.id;
+    m.destination = std::uint16_t(owner);
+    if (owner == setup_.id)
+      local_.push_back(m);
+    else
+      send(m);
+  }
+}
+
+// Communication task: never block on a full FIFO (the paper's deadlock, 2.2): keep the ray in a local
+// overflow list, in order, and go on consuming incoming rays, so a cycle of full queues always drains.
+void LogicalProcessor::send(RayMessage m) {
+  const Face face = context_.regions.nextHop(setup_.id, m.destination);
+  std::deque<RayMessage>& pending = overflow_[std::size_t(face)];
+  if (pending.empty() && transport_.trySend(face, m)) {
+    ++messageBalance_;
+    ++stats_.sent[std::size_t(face)];
+    ++stats_.messagesByKind[std::size_t(m.ray.kind)];
+    return;
+  }
+  ++stats_.refusedPushes;
+  pending.push_back(m);
+  stats_.overflowHighWater = std::max<std::uint64_t>(stats_.overflowHighWater, pending.size());
+}
+
+bool LogicalProcessor::flushOverflow() {
+  bool moved = false;
+  for (int f = 0; f < kFaces; ++f) {
+    std::deque<RayMessage>& pending = overflow_[f];
+    while (!pending.empty() && transport_.trySend(Face(f), pending.front())) {
+      ++messageBalance_;
+      ++stats_.sent[f];
+      ++stats_.messagesByKind[std::size_t(pending.front().ray.kind)];
+      pending.pop_front();
+      moved = true;
+    }
+  }
+  return moved;
+}
+
+void LogicalProcessor::onReceived(const RayMessage& m) {
+  --messageBalance_;
+  black_ = true;  // EWD 998: a receipt may have re-activated this node behind the token's back
+  ++stats_.received[m.face];
+  if (m.destination != setup_.id) {
+    ++stats_.forwarded;
+    RayMessage onward = m;
+    ++onward.hops;
+    send(onward);
+    return;
+  }
+  evaluate(m, false);
+  while (!local_.empty()) {
+    const RayMessage next = local_.back();
+    local_.pop_back();
+    evaluate(next, false);
+  }
+}
+
+bool LogicalProcessor::passive() const {
+  if (nextPrimary_ < area_.count() || !local_.empty()) return false;
+  for (const auto& pending : overflow_)
+    if (!pending.empty()) return false;
+  return true;
+}
+
+// Termination (3.6), made safe for messages in flight with Safra's counting variant (EWD 998): the token
+// sums every node's (sent - received); a white token returning to processor 0 with a zero sum, processor 0
+// white and passive, proves that every node is passive and no ray is in a FIFO. The paper's second phase
+// is kept: a node touches the token only once its primary rays are done and it has nothing to do.
+void LogicalProcessor::onIdle() {
+  transport_.flushContributions();
+  if (!holdingToken_ && transport_.receiveToken(token_)) {
+    holdingToken_ = true;
+    ++stats_.tokenVisits;
+  }
+  if (holdingToken_ && passive()) {
+    if (setup_.id == 0) {
+      const bool returned = stats_.probes > 0;
+      if (returned && !token_.black && !black_ && token_.count + messageBalance_ == 0) {
+        transport_.announceTermination();
+        return;
+      }
+      token_ = Token{false, 0, ++stats_.probes};
+    } else {
+      token_.count += messageBalance_;
+      token_.black = token_.black || black_;
+    }
+    black_ = false;
+    holdingToken_ = false;
+    transport_.passToken(token_);
+    return;
+  }
+  const auto start = Clock::now();
+  const bool blocked = !passive() && nextPrimary_ >= area_.count();
+  transport_.waitUntil([&] {
+    if (transport_.terminated() || transport_.anyIncoming()) return true;
+    for (int f = 0; f < kFaces; ++f)
+      if (!overflow_[f].empty() && transport_.canSend(Face(f))) return true;
+    return !holdingToken_ && transport_.hasToken();
+  });
+  (blocked ? stats_.blockedSeconds : stats_.idleSeconds) += secondsSince(start);
+}
+
+}  // namespace raycube::node

@@ -1,0 +1,103 @@
+#pragma once
+// One processor of the machine (Priol & Bouatouch 3.5.2): a synthesis task that shoots the primary rays of
+// its pixel area and evaluates every ray that reaches its region, interleaved in one thread with a
+// communication task that moves rays through the face FIFOs, ships contributions to the host and passes
+// the termination token.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include "core/intersect.h"
+#include "core/trace_stats.h"
+#include "core/view.h"
+#include "core/whitted.h"
+#include "node/region_cells.h"
+#include "node/region_map.h"
+#include "node/transport.h"
+
+namespace raycube::node {
+
+// What the host hands a processor (3.2 steps 1-2): its place, its pixel area, its pruned objects.
+struct NodeSetup {
+  int id = 0;
+  int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
+  std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
+  std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
+};
+
+// The read-only world every processor shares.
+struct MachineContext {
+  const core::Scene& scene;
+  const core::View& view;
+  const core::Whitted& shading;
+  const ScreenLines& lines;
+  const RegionMap& regions;
+  const std::vector<EyeBox>& eyeBoxes;  // per object
+};
+
+struct NodeStats {
+  int id = 0;
+  SampleRect area;
+  std::size_t objects = 0, rearObjects = 0, cells = 0;
+  core::TraceCounters processed;                 // ray segments evaluated here, by kind; tests; cell steps
+  std::array<std::uint64_t, core::kRayKinds> spawned{};   // rays created here (eye rays and shading)
+  std::array<std::uint64_t, core::kRayKinds> finished{};  // rays whose evaluation ended here
+  std::array<std::uint64_t, core::kRayKinds> messagesByKind{};  // rays sent to a neighbour, by kind
+  std::array<std::uint64_t, kFaces> sent{}, received{};
+  std::uint64_t forwarded = 0;       // messages passed on towards a non-adjacent destination (hops)
+  std::uint64_t refusedPushes = 0;   // sends that found the neighbour's FIFO full
+  std::uint64_t overflowHighWater = 0;
+  double blockedSeconds = 0;         // idle while holding rays its full neighbours would not take
+  double idleSeconds = 0;            // asleep with nothing to do
+  std::uint64_t tokenVisits = 0;
+  std::uint32_t probes = 0;          // node 0: token rounds started
+};
+
+class LogicalProcessor {
+ public:
+  LogicalProcessor(const MachineContext& context, NodeSetup setup, Transport& transport);
+
+  void run();  // until the machine terminates
+  const NodeStats& stats() const { return stats_; }
+  // Primary rays shot so far; safe to read from another thread (progress reporting).
+  long long primariesShot() const { return primariesShot_.load(std::memory_order_relaxed); }
+
+ private:
+  // Synthesis task
+  bool shootNextPrimary();
+  void evaluate(RayMessage message, bool primary);
+  void finishRay(const core::TracedRay& ray, const core::Hit& hit, double attenuation);
+  template <class Cells>
+  bool visitInterval(const core::TracedRay& ray, double ta, double tb, const Cells& objects, core::Hit& hit,
+                     double& attenuation);
+  void deliver(const core::RayOutcome& outcome);
+  // Communication task
+  void send(RayMessage message);
+  bool flushOverflow();
+  void onReceived(const RayMessage& message);
+  void onIdle();
+  bool passive() const;
+
+  const MachineContext& context_;
+  NodeSetup setup_;
+  Transport& transport_;
+  SampleRect area_;
+  RegionCells cells_;
+  long long nextPrimary_ = 0;
+  std::atomic<long long> primariesShot_{0};
+  std::vector<RayMessage> local_;                  // rays spawned here, still to evaluate here
+  std::array<std::deque<RayMessage>, kFaces> overflow_;  // rays refused by a full neighbour FIFO
+  std::vector<RayMessage> inbox_;
+  core::RayOutcome outcome_;
+  std::vector<core::Hit> crossed_;
+  // Termination (Safra, EWD 998)
+  std::int64_t messageBalance_ = 0;  // rays sent - rays received
+  bool black_ = false;
+  bool holdingToken_ = false;
+  Token token_;
+  NodeStats stats_;
+};
+
+}  // namespace raycube::node

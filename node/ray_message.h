@@ -1,0 +1,24 @@
+#pragma once
+// The paper's `rayon` message (Priol & Bouatouch 3.5.2): the ray with its original origin and direction,
+// where it enters the receiving region (t_enter, the paper's "end" point, and the face), its place in the
+// tree (depth, sample, coeff) and, for a light ray, the distance to the light (maxlum = ray.tMax), the light
+// term it carries (weight) and the attenuation found so far (att).
+#include <cstdint>
+
+#include "core/ray.h"
+
+namespace raycube::node {
+
+enum class Face : std::uint8_t { Left = 0, Right = 1, Up = 2, Down = 3 };
+inline constexpr int kFaces = 4;
+
+struct RayMessage {
+  core::TracedRay ray;
+  double tEnter = 0;          // the ray's interval continues from here in the receiving region
+  double attenuation = 1;     // shadow rays: product of T over objects crossed so far, in t order
+  std::uint16_t destination = 0;  // processor that owns the region the ray enters
+  std::uint8_t face = 0;          // face of the sender it left through (statistics)
+  std::uint8_t hops = 0;          // forwardings on the way (non-adjacent destinations)
+};
+
+}  // namespace raycube::node

@@ -1,0 +1,86 @@
+#include "node/region_cells.h"
+
+#include <algorithm>
+#include <set>
+
+namespace raycube::node {
+namespace {
+
+// Recursive halving of [lo, hi) `level` times, as sample-index boundaries (duplicates removed).
+std::vector<int> halvings(int lo, int hi, int level) {
+  std::vector<int> cuts{lo, hi};
+  for (int l = 0; l < level; ++l) {
+    std::vector<int> next;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      next.push_back(cuts[k]);
+      if (cuts[k + 1] - cuts[k] >= 2) next.push_back((cuts[k] + cuts[k + 1]) / 2);
+    }
+    next.push_back(hi);
+    cuts = next;
+  }
+  return cuts;
+}
+
+}  // namespace
+
+RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int level,
+                         const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& eyeBoxes) {
+  sampleBounds_[0] = halvings(area.x0, area.x1, level);
+  sampleBounds_[1] = halvings(area.y0, area.y1, level);
+  for (int axis = 0; axis < 2; ++axis)
+    for (int k : sampleBounds_[axis]) bounds_[axis].push_back(lines.at(axis, k));
+  columnsX_ = int(bounds_[0].size()) - 1;
+  const int rows = int(bounds_[1].size()) - 1;
+  std::set<std::uint32_t> distinct;
+  columns_.resize(std::size_t(columnsX_) * rows);
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columnsX_; ++i) {
+      ColumnSlab slab{bounds_[0][i], bounds_[0][i + 1], bounds_[1][j], bounds_[1][j + 1], 0, core::kInfinity};
+      std::vector<std::uint32_t> inColumn;
+      std::vector<double> splits;
+      for (std::uint32_t object : objects) {
+        const EyeBox& box = eyeBoxes[object];
+        if (!mayTouch(box, slab)) continue;
+        inColumn.push_back(object);
+        if (box.lo.z > 0) splits.push_back(box.lo.z);
+        if (box.hi.z > 0) splits.push_back(box.hi.z);
+      }
+      std::sort(splits.begin(), splits.end());
+      splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
+      Column& column = columns_[std::size_t(j) * columnsX_ + i];
+      column.depthSplits = splits;
+      column.cellObjects.resize(splits.size() + 1);
+      for (std::size_t k = 0; k <= splits.size(); ++k) {
+        slab.zLo = k == 0 ? 0.0 : splits[k - 1];
+        slab.zHi = k == splits.size() ? core::kInfinity : splits[k];
+        for (std::uint32_t object : inColumn)
+          if (mayTouch(eyeBoxes[object], slab)) {
+            column.cellObjects[k].push_back(object);
+            distinct.insert(object);
+          }
+      }
+      cellCount_ += column.cellObjects.size();
+    }
+  }
+  objectCount_ = distinct.size();
+}
+
+int RegionCells::locateIn(const std::vector<double>& bounds, double value) {
+  // Interior boundaries only: values beyond the outer ones (or NaN) clamp to the first/last interval.
+  const auto first = bounds.begin() + 1, last = bounds.end() - 1;
+  return int(std::upper_bound(first, last, value) - first);
+}
+
+void RegionCells::locate(const EyeFrameRay& ray, double t, int& column, int& row) const {
+  column = locateIn(bounds_[0], ray.screenAt(0, t));
+  row = locateIn(bounds_[1], ray.screenAt(1, t));
+}
+
+void RegionCells::locateSample(int sx, int sy, int& column, int& row) const {
+  column = int(std::upper_bound(sampleBounds_[0].begin() + 1, sampleBounds_[0].end() - 1, sx) -
+               (sampleBounds_[0].begin() + 1));
+  row = int(std::upper_bound(sampleBounds_[1].begin() + 1, sampleBounds_[1].end() - 1, sy) -
+            (sampleBounds_[1].begin() + 1));
+}
+
+}  // namespace raycube::node

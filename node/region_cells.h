@@ -1,0 +1,109 @@
+#pragma once
+// Priol & Bouatouch 3.3: a node subdivides its pyramidal region into cells. Its pixel area is halved
+// recursively in x and y to a settable level (super-cells, columns of screen space), and each column is cut
+// by the depth faces of its objects' bounding boxes (depth partitioning). A ray walks from cell to cell in
+// t order; each cell owns the half-open interval [t_enter, t_exit) of the ray inside it.
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "node/eye_box.h"
+#include "node/eye_frame_ray.h"
+#include "node/screen_grid.h"
+
+namespace raycube::node {
+
+// Where a walk left the region: the faces crossed (-1, 0, +1 along s and q) at t.
+struct RegionExit {
+  double t = 0;
+  int sStep = 0;
+  int qStep = 0;
+};
+
+enum class WalkResult : std::uint8_t { Stopped, Finished, Exited };
+
+class RegionCells {
+ public:
+  // objects: indices into the scene with their eye boxes; only those touching the region are kept.
+  RegionCells(const SampleRect& area, const ScreenLines& lines, int level, const std::vector<std::uint32_t>& objects,
+              const std::vector<EyeBox>& eyeBoxes);
+
+  // Walks [t, tEnd) from the column containing the ray at t (or the given sample's column for eye rays),
+  // calling visit(tEnter, tExit, objectIndices) for every non-empty cell interval, in t order, until visit
+  // returns false (Stopped), tEnd is reached (Finished), or the ray leaves the region (Exited, with exit).
+  template <class Visit>
+  WalkResult walk(const EyeFrameRay& ray, double t, double tEnd, int column, int row, Visit&& visit,
+                  RegionExit& exit, std::uint64_t& cellSteps) const;
+
+  // Super-cell column and row containing the ray at t (clamped into the region: 3.3.1, entry cell).
+  void locate(const EyeFrameRay& ray, double t, int& column, int& row) const;
+  void locateSample(int sx, int sy, int& column, int& row) const;
+
+  std::size_t cellCount() const { return cellCount_; }
+  std::size_t objectCount() const { return objectCount_; }  // distinct objects in the region's cells
+
+ private:
+  struct Column {
+    std::vector<double> depthSplits;                   // ascending; cell k is [split k-1, split k)
+    std::vector<std::vector<std::uint32_t>> cellObjects;  // depthSplits.size() + 1 cells
+  };
+  const Column& column(int i, int j) const { return columns_[std::size_t(j) * columnsX_ + i]; }
+  static int locateIn(const std::vector<double>& bounds, double value);
+
+  // bounds_[axis]: screen coordinates of the super-cell boundaries (first/last may be infinite)
+  std::vector<double> bounds_[2];
+  std::vector<int> sampleBounds_[2];
+  std::vector<Column> columns_;
+  int columnsX_ = 0;
+  std::size_t cellCount_ = 0;
+  std::size_t objectCount_ = 0;
+};
+
+template <class Visit>
+WalkResult RegionCells::walk(const EyeFrameRay& ray, double t, double tEnd, int i, int j, Visit&& visit,
+                             RegionExit& exit, std::uint64_t& cellSteps) const {
+  const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
+  const int zDir = (ray.d.z > 0) - (ray.d.z < 0);
+  for (;;) {
+    // The column's exit: the face ahead along s, along q, or the end of the interval. A crossing computed
+    // behind t (rounding) leaves the column at once with an empty interval.
+    const double tS = sDir > 0 ? ray.planeCrossing(0, bounds_[0][i + 1])
+                    : sDir < 0 ? ray.planeCrossing(0, bounds_[0][i]) : core::kInfinity;
+    const double tQ = qDir > 0 ? ray.planeCrossing(1, bounds_[1][j + 1])
+                    : qDir < 0 ? ray.planeCrossing(1, bounds_[1][j]) : core::kInfinity;
+    const double tColumn = std::max(t, std::min({tS, tQ, tEnd}));
+    const Column& col = column(i, j);
+    // Depth partitioning: walk the column's cells in z order.
+    const std::vector<double>& splits = col.depthSplits;
+    int k = int(std::upper_bound(splits.begin(), splits.end(), ray.zAt(t)) - splits.begin());
+    for (;;) {
+      double tCell = tColumn;
+      if (zDir > 0 && k < int(splits.size())) tCell = std::min(tCell, ray.depthCrossing(splits[k]));
+      if (zDir < 0 && k > 0) tCell = std::min(tCell, ray.depthCrossing(splits[k - 1]));
+      tCell = std::max(t, tCell);
+      ++cellSteps;
+      if (tCell > t && !col.cellObjects[k].empty() && !visit(t, tCell, col.cellObjects[k]))
+        return WalkResult::Stopped;
+      t = tCell;
+      if (t >= tColumn) break;
+      k += zDir;
+    }
+    if (tEnd <= tS && tEnd <= tQ) return WalkResult::Finished;
+    const int di = (tS == tColumn || tS <= t) && sDir != 0 ? sDir : 0;
+    const int dj = (tQ == tColumn || tQ <= t) && qDir != 0 ? qDir : 0;
+    const int ni = i + di, nj = j + dj;
+    const bool leaves = ni < 0 || ni >= columnsX_ || nj < 0 || nj >= int(bounds_[1].size()) - 1;
+    if (leaves) {
+      exit = RegionExit{t, (ni < 0) ? -1 : (ni >= columnsX_ ? 1 : 0),
+                        (nj < 0) ? -1 : (nj >= int(bounds_[1].size()) - 1 ? 1 : 0)};
+      // Crossing a region corner while staying inside along one axis: move within first along that axis.
+      if (exit.sStep == 0 && di != 0) i = ni;
+      if (exit.qStep == 0 && dj != 0) j = nj;
+      return WalkResult::Exited;
+    }
+    i = ni;
+    j = nj;
+  }
+}
+
+}  // namespace raycube::node

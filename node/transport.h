@@ -1,0 +1,48 @@
+#pragma once
+// The one interface between a node program and the rest of the machine (Priol & Bouatouch 3.5): rays to
+// neighbours through their faces, rays from neighbours, contributions to the host, the termination token.
+// The node never sees how these travel; shared-memory FIFOs are one implementation, MPI could be another.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+
+#include "core/ray.h"
+#include "node/ray_message.h"
+
+namespace raycube::node {
+
+// Safra's variant of the Dijkstra-Feijen-van Gasteren token (EWD 998), see LogicalProcessor.
+struct Token {
+  bool black = false;
+  std::int64_t count = 0;   // sum of (messages sent - messages received) of the nodes visited
+  std::uint32_t round = 0;  // probes started by node 0
+};
+
+class Transport {
+ public:
+  virtual ~Transport() = default;
+
+  virtual bool hasNeighbour(Face face) const = 0;
+  // False when the neighbour's FIFO is full: the caller keeps the ray and tries again later.
+  virtual bool trySend(Face face, const RayMessage& message) = 0;
+  // Up to into.size() rays from the incoming FIFOs; returns how many.
+  virtual std::size_t receive(std::span<RayMessage> into) = 0;
+  virtual bool anyIncoming() const = 0;
+  virtual bool canSend(Face face) const = 0;
+
+  // Contributions are batched and shipped when a block fills or on flush (when the node goes idle).
+  virtual void sendContribution(const core::Contribution& contribution) = 0;
+  virtual void flushContributions() = 0;
+
+  virtual bool hasToken() const = 0;
+  virtual bool receiveToken(Token& token) = 0;
+  virtual void passToken(const Token& token) = 0;  // to the next node on the ring
+  virtual void announceTermination() = 0;
+  virtual bool terminated() const = 0;
+
+  // Sleep (after a short spin) until ready() holds; any arriving ray, token or termination re-checks it.
+  virtual void waitUntil(const std::function<bool()>& ready) = 0;
+};
+
+}  // namespace raycube::node
