@@ -15,6 +15,7 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/machine.h"
+#include "host/machine_report.h"
 #include "host/sequential_renderers.h"
 #include "host/stats_report.h"
 
@@ -29,13 +30,14 @@ struct RenderCommand {
   int balls = 0;
   std::string size;
   int depth = 5;
-  RenderMode mode = RenderMode::ImageParallel;
+  RenderMode mode = RenderMode::Machine;
   int threads = 0;
   core::Sampling sampling = core::Sampling::Centers;
   std::string output;
   std::string statsPath;
   bool quiet = false;
   std::string procs = "4x4";
+  std::string overlayPath;
   MachineSettings machine;
 };
 
@@ -54,14 +56,16 @@ core::Scene loadScene(const RenderCommand& cmd) {
   return core::makeBalls(cmd.balls > 0 ? cmd.balls : 2);  // the default scene: the paper's balls, size 2
 }
 
-RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const RenderSettings& settings) {
+RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const RenderSettings& settings,
+                    std::optional<MachineReport>& report) {
   switch (cmd.mode) {
     case RenderMode::Reference: return renderReference(scene, settings);
     case RenderMode::ImageParallel: return renderImageParallel(scene, settings);
     case RenderMode::Machine: {
       MachineSettings machine = cmd.machine;
       std::tie(machine.rows, machine.columns) = parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
-      return renderMachine(scene, settings, machine);
+      report.emplace();
+      return renderMachine(scene, settings, machine, &*report);
     }
   }
   throw std::invalid_argument("unknown mode");
@@ -94,10 +98,21 @@ int runRender(const RenderCommand& cmd) {
   settings.shading.maxDepth = cmd.depth;
   settings.threads = cmd.threads;
   settings.progress = !cmd.quiet;
-  const RenderResult result = render(scene, cmd, settings);
+  std::optional<MachineReport> report;
+  const RenderResult result = render(scene, cmd, settings, report);
   writeOutputs(result.image, scene, cmd.output);
-  if (!cmd.statsPath.empty()) writeJson(statsJson(scene, result), cmd.statsPath);
+  if (!cmd.overlayPath.empty()) {
+    if (!report) throw std::invalid_argument("--overlay needs --mode machine");
+    core::writeImage(loadOverlay(result.image, *report, settings.sampling == core::Sampling::Corners),
+                     cmd.overlayPath);
+  }
+  if (!cmd.statsPath.empty()) {
+    nlohmann::json json = statsJson(scene, result);
+    if (report) json["machine"] = machineJson(*report);
+    writeJson(json, cmd.statsPath);
+  }
   std::cout << summaryText(scene, result);
+  if (report) std::cout << machineTable(*report);
   return result.counters.nonFinite > 0 ? 3 : 0;
 }
 
@@ -128,6 +143,7 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       ->check(CLI::Range(0, 8));
   render->add_option("-o,--output", cmd.output, "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
+  render->add_option("--overlay", cmd.overlayPath, "Machine: write the image with regions and their load (.png)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
   render->get_option("--balls")->excludes("scene");
 }

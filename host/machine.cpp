@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "core/framebuffer.h"
+#include "host/jitter_transport.h"
 #include "host/progress.h"
 #include "host/shared_memory_transport.h"
 #include "queues/wait.h"
@@ -69,10 +70,16 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
   const node::MachineContext context{scene, view, shading, lines, regions, boxes};
   SharedMemoryMachine interconnect(regions, machine.queueCapacity);
+  std::vector<std::unique_ptr<JitterTransport>> jitters;
   std::vector<std::unique_ptr<node::LogicalProcessor>> processors;
   for (node::NodeSetup& setup : pruneDatabase(regions, lines, boxes, machine.cellLevel)) {
     const int id = setup.id;
-    processors.push_back(std::make_unique<node::LogicalProcessor>(context, std::move(setup), interconnect.endpoint(id)));
+    node::Transport* transport = &interconnect.endpoint(id);
+    if (machine.jitterSeed > 0) {
+      jitters.push_back(std::make_unique<JitterTransport>(*transport, machine.jitterSeed * 7919u + unsigned(id)));
+      transport = jitters.back().get();
+    }
+    processors.push_back(std::make_unique<node::LogicalProcessor>(context, std::move(setup), *transport));
   }
   RenderResult result;
   result.mode = "machine";

@@ -22,7 +22,9 @@ LogicalProcessor::LogicalProcessor(const MachineContext& context, NodeSetup setu
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
       cells_(area_, context.lines, setup_.cellLevel, setup_.objects, context.eyeBoxes),
-      inbox_(kInboxBatch) {
+      inbox_(kInboxBatch),
+      mailboxStamp_(context.scene.objects.size(), 0),
+      mailboxT_(context.scene.objects.size(), 0.0) {
   stats_.id = setup_.id;
   stats_.area = area_;
   stats_.objects = cells_.objectCount();
@@ -71,12 +73,20 @@ template <class Cells>
 bool LogicalProcessor::visitInterval(const core::TracedRay& ray, double ta, double tb, const Cells& objects,
                                      core::Hit& hit, double& attenuation) {
   const core::Scene& scene = context_.scene;
+  const double tLimit = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
+  auto nearest = [&](std::uint32_t object) {
+    if (mailboxStamp_[object] != rayStamp_) {
+      ++stats_.processed.intersectionTests;
+      mailboxStamp_[object] = rayStamp_;
+      mailboxT_[object] = core::nearestHit(scene.objects[object], ray.ray, tLimit);
+    }
+    return mailboxT_[object];
+  };
   if (ray.kind == core::RayKind::Shadow) {
     crossed_.clear();
     for (std::uint32_t object : objects) {
-      ++stats_.processed.intersectionTests;
-      const double t = core::nearestHit(scene.objects[object], ray.ray, tb);
-      if (t < ta || t == core::kInfinity) continue;
+      const double t = nearest(object);
+      if (t < ta || t >= tb) continue;
       if (!context_.shading.transmissive(object)) {
         attenuation = 0;
         return false;
@@ -87,9 +97,8 @@ bool LogicalProcessor::visitInterval(const core::TracedRay& ray, double ta, doub
     return attenuation > 0;
   }
   for (std::uint32_t object : objects) {
-    ++stats_.processed.intersectionTests;
-    const core::Hit h{core::nearestHit(scene.objects[object], ray.ray, tb), object};
-    if (h.t >= ta && h.t < core::kInfinity && h.closerThan(hit)) hit = h;
+    const core::Hit h{nearest(object), object};
+    if (h.t >= ta && h.t < tb && h.closerThan(hit)) hit = h;
   }
   return !hit.found();
 }
@@ -99,6 +108,10 @@ bool LogicalProcessor::visitInterval(const core::TracedRay& ray, double ta, doub
 void LogicalProcessor::evaluate(RayMessage m, bool primary) {
   const core::TracedRay& ray = m.ray;
   ++stats_.processed.of(ray.kind);
+  if (++rayStamp_ == 0) {  // stamps wrapped: forget every mailbox
+    std::fill(mailboxStamp_.begin(), mailboxStamp_.end(), 0u);
+    rayStamp_ = 1;
+  }
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
   const double tMax = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;

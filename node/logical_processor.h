@@ -91,6 +91,11 @@ class LogicalProcessor {
   std::array<std::deque<RayMessage>, kFaces> overflow_;  // rays refused by a full neighbour FIFO
   std::vector<RayMessage> inbox_;
   core::RayOutcome outcome_;
+  // Mailboxes: an object met again in a later cell of the same ray is not tested again. The cached t is
+  // the object's nearest hit over the whole ray, the very number the reference renderer computes.
+  std::vector<std::uint32_t> mailboxStamp_;
+  std::vector<double> mailboxT_;
+  std::uint32_t rayStamp_ = 0;
   std::vector<core::Hit> crossed_;
   // Termination (Safra, EWD 998)
   std::int64_t messageBalance_ = 0;  // rays sent - rays received

@@ -1,0 +1,126 @@
+#include "host/machine_report.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace raycube::host {
+namespace {
+
+std::uint64_t loadOf(const ProcessorReport& p) { return p.node.processed.totalRays(); }
+
+template <class Array>
+std::uint64_t sum(const Array& a) {
+  return std::accumulate(a.begin(), a.end(), std::uint64_t(0));
+}
+
+}  // namespace
+
+std::string machineTable(const MachineReport& report) {
+  std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0;
+  std::uint64_t maxLoad = 0, totalLoad = 0;
+  for (const ProcessorReport& p : report.processors) {
+    for (int k = 0; k < core::kRayKinds; ++k) byKind[k] += p.node.messagesByKind[k];
+    forwarded += p.node.forwarded;
+    refused += p.node.refusedPushes;
+    maxLoad = std::max(maxLoad, loadOf(p));
+    totalLoad += loadOf(p);
+  }
+  const double mean = report.processors.empty() ? 0.0 : double(totalLoad) / report.processors.size();
+  std::string text = fmt::format(
+      "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, shadow {}; "
+      "forwarded {}; refused pushes {}\n",
+      report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes, byKind[0],
+      byKind[1], byKind[2], byKind[3], forwarded, refused);
+  text += fmt::format("  termination: {} token rounds, {} token passes; load max/mean {:.2f}\n", report.probes,
+                      report.tokenPasses, mean > 0 ? maxLoad / mean : 0.0);
+  text += "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  idle s  blocked s\n";
+  for (const ProcessorReport& p : report.processors) {
+    const node::NodeStats& n = p.node;
+    text += fmt::format("  {:>4} {:>7} {:>7} {:>6} {:>10} {:>8} {:>9} {:>9} {:>4} {:>8} {:>7.3f} {:>9.3f}\n", n.id,
+                        n.area.count(), n.objects, n.cells, n.processed.totalRays(), n.processed.intersectionTests,
+                        sum(n.sent), sum(n.received), n.forwarded, n.refusedPushes, n.idleSeconds, n.blockedSeconds);
+  }
+  return text;
+}
+
+nlohmann::json machineJson(const MachineReport& report) {
+  nlohmann::json processors = nlohmann::json::array();
+  for (const ProcessorReport& p : report.processors) {
+    const node::NodeStats& n = p.node;
+    nlohmann::json rays, spawned, finished, messages;
+    for (int k = 0; k < core::kRayKinds; ++k) {
+      const char* name = core::rayKindName(core::RayKind(k));
+      rays[name] = n.processed.rays[k];
+      spawned[name] = n.spawned[k];
+      finished[name] = n.finished[k];
+      messages[name] = n.messagesByKind[k];
+    }
+    nlohmann::json faces = nlohmann::json::array();
+    for (int f = 0; f < node::kFaces; ++f) {
+      const queues::QueueStats& q = p.outgoing[f];
+      faces.push_back({{"sent", n.sent[f]},
+                       {"received", n.received[f]},
+                       {"fifoHighWater", q.highWater},
+                       {"fifoMeanOccupancy", q.meanOccupancy()},
+                       {"fifoRefusedPushes", q.refusedPushes}});
+    }
+    processors.push_back({{"id", n.id},
+                          {"pixels", n.area.count()},
+                          {"area", {n.area.x0, n.area.y0, n.area.x1, n.area.y1}},
+                          {"objects", n.objects},
+                          {"rearObjects", n.rearObjects},
+                          {"cells", n.cells},
+                          {"raysProcessed", rays},
+                          {"raysSpawned", spawned},
+                          {"raysFinished", finished},
+                          {"messagesByKind", messages},
+                          {"intersectionTests", n.processed.intersectionTests},
+                          {"cellSteps", n.processed.boxTests},
+                          {"contributions", n.processed.contributions},
+                          {"faces(left,right,up,down)", faces},
+                          {"forwarded", n.forwarded},
+                          {"refusedPushes", n.refusedPushes},
+                          {"overflowHighWater", n.overflowHighWater},
+                          {"idleSeconds", n.idleSeconds},
+                          {"blockedSeconds", n.blockedSeconds},
+                          {"tokenVisits", n.tokenVisits}});
+  }
+  return {{"rows", report.settings.rows},
+          {"columns", report.settings.columns},
+          {"queueCapacity", report.settings.queueCapacity},
+          {"cellLevel", report.settings.cellLevel},
+          {"messageBytes", report.messageBytes},
+          {"contributionsAccumulated", report.contributionsAccumulated},
+          {"tokenRounds", report.probes},
+          {"tokenPasses", report.tokenPasses},
+          {"processors", processors}};
+}
+
+core::Image loadOverlay(const core::Image& image, const MachineReport& report, bool cornerSampling) {
+  core::Image out = image;
+  std::uint64_t maxLoad = 1;
+  for (const ProcessorReport& p : report.processors) maxLoad = std::max(maxLoad, loadOf(p));
+  auto clampX = [&](int v) { return std::clamp(v, 0, image.width); };
+  auto clampY = [&](int v) { return std::clamp(v, 0, image.height); };
+  for (const ProcessorReport& p : report.processors) {
+    const node::SampleRect& a = p.node.area;
+    // Corner samples sit between pixels: a sample rect [x0, x1) covers pixels [x0, x1) as well.
+    const int x0 = clampX(a.x0), x1 = clampX(a.x1), y0 = clampY(a.y0), y1 = clampY(a.y1);
+    (void)cornerSampling;
+    const double share = double(loadOf(p)) / double(maxLoad);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        core::Color& c = out.at(x, y);
+        c *= 0.35 + 0.65 * share;
+        const bool border = x == x0 || y == y0 || x == x1 - 1 || y == y1 - 1;
+        const bool bar = y - y0 < std::max(2, (y1 - y0) / 16) && x - x0 < int(share * (x1 - x0));
+        if (border) c = core::Color(1.0);
+        if (bar && !border) c = core::Color(1.0, 0.2, 0.1);
+      }
+  }
+  return out;
+}
+
+}  // namespace raycube::host
