@@ -198,7 +198,7 @@ void LogicalProcessor::deliver(const core::RayOutcome& outcome) {
 // overflow list, in order, and go on consuming incoming rays, so a cycle of full queues always drains.
 void LogicalProcessor::send(RayMessage m) {
   const Face face = context_.regions.nextHop(setup_.id, m.destination);
-  std::deque<RayMessage>& pending = overflow_[std::size_t(face)];
+  OverflowList<RayMessage>& pending = overflow_[std::size_t(face)];
   if (pending.empty() && transport_.trySend(face, m)) {
     ++messageBalance_;
     ++stats_.sent[std::size_t(face)];
@@ -213,7 +213,7 @@ void LogicalProcessor::send(RayMessage m) {
 bool LogicalProcessor::flushOverflow() {
   bool moved = false;
   for (int f = 0; f < kFaces; ++f) {
-    std::deque<RayMessage>& pending = overflow_[f];
+    OverflowList<RayMessage>& pending = overflow_[f];
     while (!pending.empty() && transport_.trySend(Face(f), pending.front())) {
       ++messageBalance_;
       ++stats_.sent[f];

@@ -6,13 +6,13 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
-#include <deque>
 #include <vector>
 
 #include "core/intersect.h"
 #include "core/trace_stats.h"
 #include "core/view.h"
 #include "core/whitted.h"
+#include "node/overflow_list.h"
 #include "node/region_cells.h"
 #include "node/region_map.h"
 #include "node/transport.h"
@@ -88,7 +88,7 @@ class LogicalProcessor {
   long long nextPrimary_ = 0;
   std::atomic<long long> primariesShot_{0};
   std::vector<RayMessage> local_;                  // rays spawned here, still to evaluate here
-  std::array<std::deque<RayMessage>, kFaces> overflow_;  // rays refused by a full neighbour FIFO
+  std::array<OverflowList<RayMessage>, kFaces> overflow_;  // rays refused by a full neighbour FIFO
   std::vector<RayMessage> inbox_;
   core::RayOutcome outcome_;
   // Mailboxes: an object met again in a later cell of the same ray is not tested again. The cached t is

@@ -1,0 +1,167 @@
+// Termination of the message-passing machine (Priol & Bouatouch 3.6, made safe by Safra's counting token,
+// EWD 998): a run with the smallest FIFOs on the largest grid still finishes (no deadlock, 2.2), and under
+// random delays around every transport operation termination is never declared while a ray is still alive:
+// every image is the reference image and every contribution reached the host.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <future>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/balls.h"
+#include "core/image.h"
+#include "host/machine.h"
+#include "host/sequential_renderers.h"
+
+namespace raycube::host {
+namespace {
+
+bool sanitized() {
+  const char* value = std::getenv("RAYCUBE_SANITIZED");
+  return value != nullptr && std::string(value) == "1";
+}
+
+std::chrono::seconds watchdogLimit() {
+  return std::chrono::seconds(sanitized() ? 600 : 120);
+}
+
+RenderSettings settingsFor(int side) {
+  RenderSettings s;
+  s.width = side;
+  s.height = side;
+  s.progress = false;
+  return s;
+}
+
+// renderMachine on a worker thread; std::abort() (after saying why) if it does not finish in time.
+RenderResult renderMachineWatched(const core::Scene& scene, const RenderSettings& settings,
+                                  const MachineSettings& machine, MachineReport& report,
+                                  const std::string& label) {
+  std::packaged_task<RenderResult()> task([&] { return renderMachine(scene, settings, machine, &report); });
+  std::future<RenderResult> done = task.get_future();
+  std::thread worker(std::move(task));
+  if (done.wait_for(watchdogLimit()) != std::future_status::ready) {
+    std::fprintf(stderr,
+                 "WATCHDOG: %s did not finish within %lld s (deadlock or lost termination); aborting\n",
+                 label.c_str(), (long long)watchdogLimit().count());
+    std::fflush(stderr);
+    std::abort();
+  }
+  worker.join();
+  return done.get();
+}
+
+struct Totals {
+  std::uint64_t spawned = 0, finished = 0, contributions = 0, messages = 0, refused = 0;
+};
+
+Totals totalsOf(const MachineReport& report) {
+  Totals t;
+  for (const ProcessorReport& p : report.processors) {
+    for (int k = 0; k < core::kRayKinds; ++k) {
+      t.spawned += p.node.spawned[k];
+      t.finished += p.node.finished[k];
+      t.messages += p.node.messagesByKind[k];
+    }
+    t.contributions += p.node.processed.contributions;
+    t.refused += p.node.refusedPushes;
+  }
+  return t;
+}
+
+void expectComplete(const RenderResult& reference, const RenderResult& machine, const MachineReport& report,
+                    const std::string& label) {
+  EXPECT_TRUE(core::bitIdentical(machine.image, reference.image))
+      << label << ": image differs from the reference";
+  const Totals t = totalsOf(report);
+  EXPECT_EQ(t.spawned, t.finished) << label << ": rays spawned vs finished";
+  EXPECT_EQ(t.finished, reference.counters.totalRays()) << label << ": rays vs the reference";
+  EXPECT_EQ(report.contributionsAccumulated, t.contributions)
+      << label << ": contributions accumulated vs sent";
+  EXPECT_EQ(report.contributionsAccumulated, reference.counters.contributions) << label;
+}
+
+// 2.2: with one-ray FIFOs on 64 processors most sends are refused at some point; a node that blocked on a
+// full neighbour would deadlock the ring of full queues.
+TEST(TerminationTest, CapacityOneOnEightByEightFinishes) {
+  const core::Scene scene = core::makeBalls(2);
+  const int side = sanitized() ? 24 : 64;
+  const RenderSettings settings = settingsFor(side);
+  const RenderResult reference = renderReference(scene, settings);
+  MachineSettings machine;
+  machine.rows = 8;
+  machine.columns = 8;
+  machine.queueCapacity = 1;
+  MachineReport report;
+  const RenderResult result = renderMachineWatched(scene, settings, machine, report, "balls2 8x8 capacity 1");
+  expectComplete(reference, result, report, "balls2 8x8 capacity 1");
+  const Totals t = totalsOf(report);
+  EXPECT_GT(t.messages, 1000u) << "the run must actually stress the FIFOs";
+  EXPECT_GT(t.refused, 0u) << "some sends must find a full FIFO";
+  std::printf(
+      "8x8 capacity 1, %dx%d: %llu messages, %llu refused pushes, %u token rounds, %llu token passes\n", side,
+      side, (unsigned long long)t.messages, (unsigned long long)t.refused, report.probes,
+      (unsigned long long)report.tokenPasses);
+}
+
+template <class T>
+std::string minMedianMax(std::vector<T> values) {
+  std::sort(values.begin(), values.end());
+  return std::to_string(values.front()) + "/" + std::to_string(values[values.size() / 2]) + "/" +
+         std::to_string(values.back());
+}
+
+// Random delays on every send, receive and token pass: the schedules under which a careless termination
+// detector declares the end while a ray sits in a FIFO or in a node's overflow list.
+TEST(TerminationTest, NeverDeclaredEarlyUnderRandomDelays) {
+  const core::Scene scene = core::makeBalls(2);
+  const int runs = sanitized() ? 24 : 800;
+  const int sides[] = {16, 20, 24};
+  const int grids[][2] = {{2, 2}, {3, 3}, {4, 4}, {1, 5}};
+  std::map<int, RenderResult> references;
+  for (int side : sides) references.emplace(side, renderReference(scene, settingsFor(side)));
+
+  std::vector<std::uint64_t> tokenPasses, messages;
+  std::vector<std::uint32_t> rounds;
+  int failures = 0;
+  for (int run = 0; run < runs && failures < 5; ++run) {
+    const int side = sides[run % 3];
+    MachineSettings machine;
+    machine.rows = grids[(run / 3) % 4][0];
+    machine.columns = grids[(run / 3) % 4][1];
+    machine.queueCapacity = std::size_t(1 + run % 4);
+    machine.jitterSeed = unsigned(run + 1);
+    const std::string label = "jitter seed " + std::to_string(machine.jitterSeed) + ", balls2 " +
+                              std::to_string(side) + "px, " + std::to_string(machine.rows) + "x" +
+                              std::to_string(machine.columns) + ", capacity " +
+                              std::to_string(machine.queueCapacity);
+    MachineReport report;
+    const RenderResult result = renderMachineWatched(scene, settingsFor(side), machine, report, label);
+    const int before = testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count();
+    expectComplete(references.at(side), result, report, label);
+    if (testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count() != before)
+      ++failures;
+    tokenPasses.push_back(report.tokenPasses);
+    rounds.push_back(report.probes);
+    messages.push_back(totalsOf(report).messages);
+    EXPECT_GE(report.probes, 1u) << label;
+  }
+  EXPECT_EQ(failures, 0) << "stopped after " << tokenPasses.size() << " runs";
+  const std::string summary = "runs " + std::to_string(tokenPasses.size()) +
+                              "; token passes min/median/max " + minMedianMax(tokenPasses) +
+                              "; token rounds " + minMedianMax(rounds) + "; ray messages " +
+                              minMedianMax(messages);
+  std::printf("%s\n", summary.c_str());
+  RecordProperty("token_passes", minMedianMax(tokenPasses));
+  RecordProperty("token_rounds", minMedianMax(rounds));
+  RecordProperty("ray_messages", minMedianMax(messages));
+}
+
+}  // namespace
+}  // namespace raycube::host
