@@ -25,4 +25,9 @@ namespace raycube::core {
 // of plane crossings, so a hit always lies in a cell that holds its object.
 inline constexpr double kCellMarginRelative = 0x1p-30;
 
+// Every face of a region is a plane through the eye, so a ray that (nearly) passes through the eye meets
+// them all at the apex, where z = 0 up to rounding. Crossings with z below this fraction of the ray's
+// depth scale are such apex artifacts, not crossings in front of the eye.
+inline constexpr double kApexRelative = 0x1p-40;
+
 }  // namespace raycube::core

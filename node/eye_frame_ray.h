@@ -42,7 +42,9 @@ struct EyeFrameRay {
   // t where the ray meets the plane (screen coordinate = c) in front of the eye; infinity if it does not.
   double planeCrossing(int axis, double c) const {
     const double t = (c * o.z - o[axis]) / (d[axis] - c * d.z);
-    return (std::isfinite(t) && zAt(t) > 0) ? t : core::kInfinity;
+    if (!std::isfinite(t)) return core::kInfinity;
+    const double scale = std::abs(o.z) + std::abs(t * d.z);
+    return zAt(t) > core::kApexRelative * scale ? t : core::kInfinity;
   }
   // t where the ray meets the depth plane z = c; infinity if parallel.
   double depthCrossing(double c) const {
