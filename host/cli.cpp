@@ -25,14 +25,26 @@ namespace {
 // 16x16 is the paper's 256 processors squared; 64x64 leaves room without exhausting threads.
 constexpr int kMaxProcessorsPerSide = 64;
 
+const std::map<std::string, RenderMode> kModes{
+    {"reference", RenderMode::Reference}, {"image-parallel", RenderMode::ImageParallel}, {"machine", RenderMode::Machine}};
+const std::map<std::string, core::Sampling> kSamplings{{"centers", core::Sampling::Centers},
+                                                       {"corners", core::Sampling::Corners}};
+
+template <class Value>
+std::vector<std::string> keysOf(const std::map<std::string, Value>& map) {
+  std::vector<std::string> keys;
+  for (const auto& entry : map) keys.push_back(entry.first);
+  return keys;
+}
+
 struct RenderCommand {
   std::string scenePath;
   int balls = 0;
   std::string size;
   int depth = 5;
-  RenderMode mode = RenderMode::Machine;
+  std::string mode = "machine";
   int threads = 0;
-  core::Sampling sampling = core::Sampling::Centers;
+  std::string sampling = "centers";
   std::string output;
   std::string statsPath;
   bool quiet = false;
@@ -58,7 +70,7 @@ core::Scene loadScene(const RenderCommand& cmd) {
 
 RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const RenderSettings& settings,
                     std::optional<MachineReport>& report) {
-  switch (cmd.mode) {
+  switch (kModes.at(cmd.mode)) {
     case RenderMode::Reference: return renderReference(scene, settings);
     case RenderMode::ImageParallel: return renderImageParallel(scene, settings);
     case RenderMode::Machine: {
@@ -94,7 +106,7 @@ int runRender(const RenderCommand& cmd) {
   settings.height = scene.camera.height;
   if (!cmd.size.empty())
     std::tie(settings.width, settings.height) = parsePair(cmd.size, "--size", "WxH", core::kMaxNffResolution);
-  settings.sampling = cmd.sampling;
+  settings.sampling = kSamplings.at(cmd.sampling);
   settings.shading.maxDepth = cmd.depth;
   settings.threads = cmd.threads;
   settings.progress = !cmd.quiet;
@@ -125,17 +137,12 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
   render->add_option("--size", cmd.size, "Image size WxH (overrides the file's resolution)");
   render->add_option("--depth", cmd.depth, "Maximum ray tree depth, the eye ray being depth 1")
       ->check(CLI::Range(1, 64));
-  const std::map<std::string, RenderMode> modes{{"reference", RenderMode::Reference},
-                                                {"image-parallel", RenderMode::ImageParallel},
-                                                {"machine", RenderMode::Machine}};
   render->add_option("--mode", cmd.mode, "machine (message passing) | reference | image-parallel")
-      ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+      ->transform(CLI::IsMember(keysOf(kModes), CLI::ignore_case));
   render->add_option("--threads", cmd.threads, "Worker threads for image-parallel (0 = all cores)")
       ->check(CLI::Range(0, 1024));
-  const std::map<std::string, core::Sampling> samplings{{"centers", core::Sampling::Centers},
-                                                        {"corners", core::Sampling::Corners}};
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
-      ->transform(CLI::CheckedTransformer(samplings, CLI::ignore_case));
+      ->transform(CLI::IsMember(keysOf(kSamplings), CLI::ignore_case));
   render->add_option("--procs", cmd.procs, "Logical processors of the machine as RxC (rows x columns)");
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
@@ -179,8 +186,13 @@ int runCommandLine(int argc, char** argv) {
   addCompareCommand(app, compareCmd);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "raycube: " << e.what() << " (see raycube --help)\n";
+    return 2;
   }
   try {
     if (app.got_subcommand("render")) return runRender(renderCmd);

@@ -1,0 +1,179 @@
+// The intersection kernels every renderer and every node runs: one ray against one primitive
+// (core::nearestHit), and a ray against the whole balls2 database through the BVH (closest hit and the
+// shadow ray's transmission query). items/s is rays per second.
+//
+//   intersection_benchmark --benchmark_min_time=0.2
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "core/balls.h"
+#include "core/bvh.h"
+#include "core/intersect.h"
+#include "core/whitted.h"
+
+namespace raycube::core {
+namespace {
+
+constexpr int kRays = 4096;  // enough distinct rays to defeat branch prediction, few enough to stay in L1/L2
+
+Vec3 randomUnit(std::mt19937_64& random) {
+  std::normal_distribution<double> normal;
+  return glm::normalize(Vec3(normal(random), normal(random), normal(random)));
+}
+
+// Rays from random points on a sphere of radius 3 about the origin towards random points in a ball of
+// radius `aim` about the origin: with aim below the primitive's size most rays hit, well above most miss.
+std::vector<Ray> raysTowardsOrigin(double aim, std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> uniform(0, 1);
+  std::vector<Ray> rays(kRays);
+  for (Ray& ray : rays) {
+    ray.origin = 3.0 * randomUnit(random);
+    const Vec3 target = aim * std::cbrt(uniform(random)) * randomUnit(random);
+    ray.direction = glm::normalize(target - ray.origin);
+    ray.tMin = 0;
+    ray.tMax = kInfinity;
+  }
+  return rays;
+}
+
+void runNearestHit(benchmark::State& state, const Object& object, const std::vector<Ray>& rays) {
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    const Ray& ray = rays[i];
+    i = (i + 1) & (kRays - 1);
+    const double t = nearestHit(object, ray, kInfinity);
+    hits += t < kInfinity;
+    benchmark::DoNotOptimize(t);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["hit_fraction"] = state.iterations() > 0 ? double(hits) / double(state.iterations()) : 0.0;
+}
+
+void BM_NearestHit_SphereHit(benchmark::State& state) {
+  const Object sphere{Sphere{Vec3(0), 1.0}, 0, false};
+  runNearestHit(state, sphere, raysTowardsOrigin(0.5, 1));
+}
+
+void BM_NearestHit_SphereMiss(benchmark::State& state) {
+  // Every ray aims at a point beyond the sphere's reach from its direction: a miss with a real discriminant
+  // test.
+  const Object sphere{Sphere{Vec3(0, 0, 0), 0.1}, 0, false};
+  std::vector<Ray> rays = raysTowardsOrigin(0.0, 2);
+  for (Ray& ray : rays) ray.origin += 0.5 * glm::normalize(glm::cross(ray.direction, Vec3(0.3, 0.5, 0.8)));
+  runNearestHit(state, sphere, rays);
+}
+
+void BM_NearestHit_Quad(benchmark::State& state) {
+  const Object quad{Polygon{{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}}, 0, false};
+  runNearestHit(state, quad, raysTowardsOrigin(1.0, 3));
+}
+
+void BM_NearestHit_PatchTriangle(benchmark::State& state) {
+  const Object patch{
+      Patch{{Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(0, 1, 0)},
+            {glm::normalize(Vec3(-0.2, -0.2, 1)), glm::normalize(Vec3(0.2, -0.2, 1)), Vec3(0, 0, 1)}},
+      0, false};
+  runNearestHit(state, patch, raysTowardsOrigin(1.0, 4));
+}
+
+void BM_NearestHit_Cone(benchmark::State& state) {
+  const Object cone{Cone{Vec3(0, 0, -1), 0.6, Vec3(0, 0, 1), 0.2}, 0, false};
+  runNearestHit(state, cone, raysTowardsOrigin(1.0, 5));
+}
+
+BENCHMARK(BM_NearestHit_SphereHit);
+BENCHMARK(BM_NearestHit_SphereMiss);
+BENCHMARK(BM_NearestHit_Quad);
+BENCHMARK(BM_NearestHit_PatchTriangle);
+BENCHMARK(BM_NearestHit_Cone);
+
+// balls2 (91 spheres and the floor) and its BVH, built once.
+struct Balls2 {
+  Scene scene = makeBalls(2);
+  Whitted shading{scene, ShadingOptions{}};
+  Bvh bvh{scene, shading};
+};
+const Balls2& balls2() {
+  static const Balls2 instance;
+  return instance;
+}
+
+// Random rays through the flake's neighbourhood: from the camera region towards the flake, as eye and
+// reflected rays go.
+std::vector<Ray> randomSceneRays(std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> uniform(-0.8, 0.8);
+  std::vector<Ray> rays(kRays);
+  for (Ray& ray : rays) {
+    ray.origin = Vec3(2.1, 1.3, 1.7) + 0.5 * Vec3(uniform(random), uniform(random), uniform(random));
+    ray.direction =
+        glm::normalize(Vec3(uniform(random), uniform(random), uniform(random) - 0.2) - ray.origin);
+    ray.tMin = 0;
+    ray.tMax = kInfinity;
+  }
+  return rays;
+}
+
+void BM_BvhClosestHit_Balls2(benchmark::State& state) {
+  const Balls2& b = balls2();
+  const std::vector<Ray> rays = randomSceneRays(6);
+  TraceCounters counters;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Hit hit = b.bvh.closestHit(rays[i], counters);
+    i = (i + 1) & (kRays - 1);
+    benchmark::DoNotOptimize(hit);
+  }
+  state.SetItemsProcessed(state.iterations());
+  const double n = double(state.iterations());
+  state.counters["object_tests_per_ray"] = n > 0 ? double(counters.intersectionTests) / n : 0.0;
+  state.counters["box_tests_per_ray"] = n > 0 ? double(counters.boxTests) / n : 0.0;
+}
+
+// Shadow rays: from the points the random rays hit, towards the first light, as Whitted spawns them.
+void BM_BvhTransmission_Balls2(benchmark::State& state) {
+  const Balls2& b = balls2();
+  std::vector<Ray> shadows;
+  TraceCounters scratchCounters;
+  for (const Ray& ray : randomSceneRays(7)) {
+    const Hit hit = b.bvh.closestHit(ray, scratchCounters);
+    if (!hit.found()) continue;
+    const SurfacePoint sp = surfaceAt(b.scene.objects[hit.object], ray, hit.t);
+    const Vec3 n = glm::dot(sp.geometricNormal, ray.direction) < 0 ? sp.geometricNormal : -sp.geometricNormal;
+    Ray shadow;
+    shadow.origin = spawnOrigin(sp.point, n, hit.t);
+    const Vec3 toLight = b.scene.lights[0].position - shadow.origin;
+    shadow.tMax = glm::length(toLight);
+    shadow.direction = toLight / shadow.tMax;
+    shadow.tMin = 0;
+    shadows.push_back(shadow);
+  }
+  if (shadows.empty()) {
+    state.SkipWithError("no random ray hit balls2");
+    return;
+  }
+  TraceCounters counters;
+  std::vector<Hit> crossed;
+  std::size_t i = 0, lit = 0;
+  for (auto _ : state) {
+    const double t = b.bvh.transmission(shadows[i], counters, crossed);
+    lit += t > 0;
+    i = i + 1 == shadows.size() ? 0 : i + 1;
+    benchmark::DoNotOptimize(t);
+  }
+  state.SetItemsProcessed(state.iterations());
+  const double n = double(state.iterations());
+  state.counters["lit_fraction"] = n > 0 ? double(lit) / n : 0.0;
+  state.counters["object_tests_per_ray"] = n > 0 ? double(counters.intersectionTests) / n : 0.0;
+}
+
+BENCHMARK(BM_BvhClosestHit_Balls2);
+BENCHMARK(BM_BvhTransmission_Balls2);
+
+}  // namespace
+}  // namespace raycube::core
+
+BENCHMARK_MAIN();

@@ -1,0 +1,180 @@
+// The `raycube` program as a user meets it: exit codes, one-line errors that name the problem, and the
+// files it promises to write. The binary is the one the build produced: its path comes from the
+// environment variable RAYCUBE_BINARY when set, else from the compile definition RAYCUBE_BINARY; without
+// either the tests are skipped.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "core/balls.h"
+#include "core/image.h"
+#include "host/sequential_renderers.h"
+
+
+namespace raycube::host {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string binaryPath() {
+  if (const char* path = std::getenv("RAYCUBE_BINARY"); path != nullptr && *path != '\0') return path;
+#ifdef RAYCUBE_BINARY
+  return RAYCUBE_BINARY;
+#else
+  return "";
+#endif
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Outcome {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+class Cli : public testing::Test {
+ protected:
+  void SetUp() override {
+    binary_ = binaryPath();
+    if (binary_.empty())
+      GTEST_SKIP() << "set RAYCUBE_BINARY (environment or compile definition) to the raycube executable";
+    ASSERT_TRUE(fs::exists(binary_)) << binary_;
+    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("raycube_cli_test_" + std::to_string(::getpid()) + "_" +
+                                        info->test_suite_name() + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+
+  // Runs `raycube <arguments>` in the test's own directory, capturing stdout and stderr.
+  Outcome run(const std::string& arguments) const {
+    std::string environment;
+    const std::string command = "cd " + quoted(dir_.string()) + " && " + environment + quoted(binary_) + " " +
+                                arguments + " >stdout.txt 2>stderr.txt";
+    const int status = std::system(command.c_str());
+    Outcome r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / "stdout.txt");
+    r.err = slurp(dir_ / "stderr.txt");
+    return r;
+  }
+
+  // A failed run: non-zero exit, exactly one line on stderr, containing every one of `names`.
+  void expectOneLineError(const std::string& arguments, std::initializer_list<std::string> names) const {
+    SCOPED_TRACE("raycube " + arguments);
+    const Outcome r = run(arguments);
+    EXPECT_NE(r.exitCode, 0);
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(r.err.back(), '\n') << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr:\n" << r.err;
+    for (const std::string& name : names)
+      EXPECT_NE(r.err.find(name), std::string::npos) << "stderr: " << r.err;
+    // Control characters in an error line are a defect (e.g. enum values printed as raw bytes).
+    const auto control = std::find_if(
+        r.err.begin(), r.err.end(), [](char c) { return c != '\n' && static_cast<unsigned char>(c) < 0x20; });
+    EXPECT_TRUE(control == r.err.end()) << "control character " << int(*control) << " at offset "
+                                        << (control - r.err.begin()) << " of stderr: " << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.png")) << "no image after an error";
+  }
+
+  std::string binary_;
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpExitsZero) {
+  const Outcome r = run("--help");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.out.find("render"), std::string::npos) << r.out;
+  const Outcome sub = run("render --help");
+  EXPECT_EQ(sub.exitCode, 0);
+  EXPECT_NE(sub.out.find("--size"), std::string::npos) << sub.out;
+}
+
+TEST_F(Cli, BadSizeIsAOneLineError) {
+  expectOneLineError("render --balls 1 --size 0x5 -q -o x.png", {"--size", "0x5"});
+  expectOneLineError("render --balls 1 --size abc -q -o x.png", {"--size", "abc"});
+}
+
+TEST_F(Cli, BadModeIsAOneLineError) {
+  expectOneLineError("render --balls 1 --mode bogus -q -o x.png", {"--mode", "bogus"});
+}
+
+TEST_F(Cli, BadDepthIsAOneLineError) {
+  expectOneLineError("render --balls 1 --depth 0 -q -o x.png", {"--depth", "0"});
+}
+
+TEST_F(Cli, MissingSceneFileIsAOneLineError) {
+  expectOneLineError("render no_such_scene.nff -q -o x.png", {"no_such_scene.nff"});
+}
+
+TEST_F(Cli, MalformedSceneFileIsAOneLineErrorWithItsPosition) {
+  std::ofstream(dir_ / "broken.nff") << "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.01\n"
+                                        "resolution 16 16\nl 1 1 1\nf 1 1 1 1 0 0 0 1\ns 0 0 0\n";
+  expectOneLineError("render broken.nff -q -o x.png", {"broken.nff:10"});
+}
+
+TEST_F(Cli, WritesPngOfTheRequestedSize) {
+  const Outcome r = run("render --balls 1 --size 16x16 -q -o tmp/x.png");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const core::Image image = core::readPng(dir_ / "tmp" / "x.png");
+  EXPECT_EQ(image.width, 16);
+  EXPECT_EQ(image.height, 16);
+}
+
+// The EXR holds the library's render of the same scene, to float precision.
+TEST_F(Cli, WritesExrEqualToTheLibraryRender) {
+  const Outcome r = run("render --balls 1 --size 16x16 -q -o x.exr");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const core::Image image = core::readExr(dir_ / "x.exr");
+  ASSERT_EQ(image.width, 16);
+  ASSERT_EQ(image.height, 16);
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.progress = false;
+  const core::Image expected = renderImageParallel(core::makeBalls(1), settings).image;
+  EXPECT_LE(core::compareImages(image, expected).maxAbs, 1e-6);
+}
+
+TEST_F(Cli, UnknownImageExtensionFailsClearly) {
+  const Outcome r = run("render --balls 1 --size 16x16 -q -o x.bmp");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("x.bmp"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(".png"), std::string::npos) << "should name the supported extensions: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.bmp"));
+}
+
+TEST_F(Cli, StatsAreParseableJsonWithRayCounts) {
+  const Outcome r = run("render --balls 1 --size 16x16 -q -o x.png --stats s.json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json stats = nlohmann::json::parse(slurp(dir_ / "s.json"));
+  EXPECT_EQ(stats.at("rays").at("eye").get<int>(), 256);
+  EXPECT_EQ(stats.at("image").at("width").get<int>(), 16);
+  EXPECT_EQ(stats.at("nonFiniteContributions").get<int>(), 0);
+  EXPECT_GT(stats.at("rays").at("shadow").get<int>(), 0);
+}
+
+}  // namespace
+}  // namespace raycube::host
