@@ -15,9 +15,9 @@ class JitterTransport final : public node::Transport {
   JitterTransport(node::Transport& inner, unsigned seed) : inner_(inner), random_(seed) {}
 
   bool hasNeighbour(node::Face face) const override { return inner_.hasNeighbour(face); }
-  bool trySend(node::Face face, const node::RayMessage& m) override {
+  std::size_t trySend(node::Face face, std::span<const node::RayMessage> messages) override {
     jitter();
-    const bool sent = inner_.trySend(face, m);
+    const std::size_t sent = inner_.trySend(face, messages.subspan(0, std::min<std::size_t>(messages.size(), 1 + random_() % 4)));
     jitter();
     return sent;
   }

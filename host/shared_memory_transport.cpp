@@ -5,16 +5,6 @@
 namespace raycube::host {
 namespace {
 
-node::Face opposite(node::Face f) {
-  switch (f) {
-    case node::Face::Left: return node::Face::Right;
-    case node::Face::Right: return node::Face::Left;
-    case node::Face::Up: return node::Face::Down;
-    case node::Face::Down: return node::Face::Up;
-  }
-  return f;
-}
-
 std::vector<queues::Doorbell*> rawBells(const std::vector<std::unique_ptr<queues::Doorbell>>& bells) {
   std::vector<queues::Doorbell*> raw;
   for (const auto& b : bells) raw.push_back(b.get());
@@ -30,15 +20,13 @@ class SharedMemoryMachine::Endpoint final : public node::Transport {
       outgoing_[f] = machine.queues_[std::size_t(id) * node::kFaces + f].get();
       const int n = machine.regions_.neighbour(id, node::Face(f));
       incoming_[f] = n < 0 ? nullptr
-                           : machine.queues_[std::size_t(n) * node::kFaces + int(opposite(node::Face(f)))].get();
+                           : machine.queues_[std::size_t(n) * node::kFaces + int(node::opposite(node::Face(f)))].get();
     }
   }
 
   bool hasNeighbour(node::Face face) const override { return outgoing_[int(face)] != nullptr; }
-  bool trySend(node::Face face, const node::RayMessage& message) override {
-    node::RayMessage m = message;
-    m.face = std::uint8_t(opposite(face));  // the face of the receiver it arrives through
-    return outgoing_[int(face)]->tryPush(m);
+  std::size_t trySend(node::Face face, std::span<const node::RayMessage> messages) override {
+    return outgoing_[int(face)]->tryPushN(messages);
   }
   bool canSend(node::Face face) const override { return outgoing_[int(face)]->hasSpace(); }
   std::size_t receive(std::span<node::RayMessage> into) override {

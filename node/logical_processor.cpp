@@ -198,11 +198,10 @@ void LogicalProcessor::deliver(const core::RayOutcome& outcome) {
 // overflow list, in order, and go on consuming incoming rays, so a cycle of full queues always drains.
 void LogicalProcessor::send(RayMessage m) {
   const Face face = context_.regions.nextHop(setup_.id, m.destination);
+  m.face = std::uint8_t(opposite(face));
   OverflowList<RayMessage>& pending = overflow_[std::size_t(face)];
-  if (pending.empty() && transport_.trySend(face, m)) {
-    ++messageBalance_;
-    ++stats_.sent[std::size_t(face)];
-    ++stats_.messagesByKind[std::size_t(m.ray.kind)];
+  if (pending.empty() && transport_.trySend(face, std::span<const RayMessage>(&m, 1)) == 1) {
+    countSent(face, m);
     return;
   }
   ++stats_.refusedPushes;
@@ -210,17 +209,22 @@ void LogicalProcessor::send(RayMessage m) {
   stats_.overflowHighWater = std::max<std::uint64_t>(stats_.overflowHighWater, pending.size());
 }
 
+void LogicalProcessor::countSent(Face face, const RayMessage& m) {
+  ++messageBalance_;  // EWD 998: counted when the ray enters the neighbour's FIFO
+  ++stats_.sent[std::size_t(face)];
+  ++stats_.messagesByKind[std::size_t(m.ray.kind)];
+}
+
 bool LogicalProcessor::flushOverflow() {
   bool moved = false;
   for (int f = 0; f < kFaces; ++f) {
     OverflowList<RayMessage>& pending = overflow_[f];
-    while (!pending.empty() && transport_.trySend(Face(f), pending.front())) {
-      ++messageBalance_;
-      ++stats_.sent[f];
-      ++stats_.messagesByKind[std::size_t(pending.front().ray.kind)];
-      pending.pop_front();
-      moved = true;
-    }
+    if (pending.empty()) continue;
+    const std::span<const RayMessage> waiting = pending.all();
+    const std::size_t n = transport_.trySend(Face(f), waiting);
+    for (std::size_t k = 0; k < n; ++k) countSent(Face(f), waiting[k]);
+    pending.pop_front(n);
+    moved |= n > 0;
   }
   return moved;
 }

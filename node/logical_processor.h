@@ -75,6 +75,7 @@ class LogicalProcessor {
   void deliver(const core::RayOutcome& outcome);
   // Communication task
   void send(RayMessage message);
+  void countSent(Face face, const RayMessage& message);
   bool flushOverflow();
   void onReceived(const RayMessage& message);
   void onIdle();

@@ -24,8 +24,9 @@ class Transport {
   virtual ~Transport() = default;
 
   virtual bool hasNeighbour(Face face) const = 0;
-  // False when the neighbour's FIFO is full: the caller keeps the ray and tries again later.
-  virtual bool trySend(Face face, const RayMessage& message) = 0;
+  // Sends the longest prefix of `messages` the neighbour's FIFO has room for; returns its length. The
+  // caller keeps the rest and tries again later.
+  virtual std::size_t trySend(Face face, std::span<const RayMessage> messages) = 0;
   // Up to into.size() rays from the incoming FIFOs; returns how many.
   virtual std::size_t receive(std::span<RayMessage> into) = 0;
   virtual bool anyIncoming() const = 0;

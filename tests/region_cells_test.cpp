@@ -1,0 +1,160 @@
+// The geometry of a processor's region (Priol & Bouatouch 3.1, 3.3): screen lines, eye-frame rays, cells.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/balls.h"
+#include "core/brute_force.h"
+#include "node/region_cells.h"
+#include "node/region_map.h"
+
+namespace raycube::node {
+namespace {
+
+struct Fixture {
+  core::Scene scene = core::makeBalls(2);
+  core::View view{scene.camera, 64, 48, core::Sampling::Centers};
+  ScreenLines lines{view};
+  std::vector<EyeBox> boxes;
+  std::vector<std::uint32_t> all;
+  Fixture() {
+    for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
+      boxes.push_back(eyeBoxOf(scene.objects[i], view));
+      all.push_back(i);
+    }
+  }
+};
+
+TEST(ScreenLines, OuterBoundariesAreAtInfinityAndInnerOnesIncrease) {
+  Fixture f;
+  EXPECT_EQ(f.lines.at(0, 0), -core::kInfinity);
+  EXPECT_EQ(f.lines.at(0, 64), core::kInfinity);
+  EXPECT_EQ(f.lines.at(1, 48), core::kInfinity);
+  for (int k = 1; k < 63; ++k) EXPECT_LT(f.lines.at(0, k), f.lines.at(0, k + 1));
+  for (int k = 1; k < 47; ++k) EXPECT_LT(f.lines.at(1, k), f.lines.at(1, k + 1));
+}
+
+TEST(EyeFrameRay, EyeRaysStayOnTheirSampleAndNeverCrossAFace) {
+  Fixture f;
+  const core::Ray ray = f.view.eyeRay(10, 20);
+  const EyeFrameRay er = EyeFrameRay::of(ray, f.view);
+  EXPECT_EQ(er.screenDirection(0), 0);
+  EXPECT_EQ(er.screenDirection(1), 0);
+  // Every face through the eye is met at the apex only: not a crossing in front of the eye.
+  for (int k = 1; k < 64; ++k) EXPECT_EQ(er.planeCrossing(0, f.lines.at(0, k)), core::kInfinity);
+  EXPECT_GT(er.screenAt(0, 1.0), f.lines.at(0, 10));
+  EXPECT_LT(er.screenAt(0, 1.0), f.lines.at(0, 11));
+}
+
+TEST(EyeFrameRay, SplitsTheLineAtTheEyePlane) {
+  Fixture f;
+  core::Ray ray;
+  ray.origin = f.scene.camera.from - 2.0 * glm::normalize(f.scene.camera.at - f.scene.camera.from);  // behind
+  ray.direction = glm::normalize(f.scene.camera.at - f.scene.camera.from + core::Vec3(0.1, 0, 0));
+  const EyeFrameRay er = EyeFrameRay::of(ray, f.view);
+  EXPECT_FALSE(er.inFront(0));
+  const double tz = er.eyePlaneCrossing();
+  EXPECT_GT(tz, 0);
+  EXPECT_EQ(er.partEnd(0), tz);
+  EXPECT_TRUE(er.inFront(tz));
+  EXPECT_EQ(er.partEnd(tz), core::kInfinity);
+}
+
+// A walk hands out contiguous, non-overlapping intervals in t order, starting where it was asked to.
+TEST(RegionCells, WalkCoversTheIntervalContiguously) {
+  Fixture f;
+  const SampleRect area{16, 48, 12, 36};
+  const RegionCells cells(area, f.lines, 2, f.all, f.boxes);
+  EXPECT_GT(cells.cellCount(), 16u);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int exited = 0, finished = 0;
+  for (int n = 0; n < 2000; ++n) {
+    core::Ray ray;
+    ray.origin = core::Vec3(u(random) * 0.5, u(random) * 0.5, u(random) * 0.5 + 0.2);
+    ray.direction = glm::normalize(core::Vec3(u(random), u(random), u(random)));
+    const EyeFrameRay er = EyeFrameRay::of(ray, f.view);
+    if (!er.inFront(0)) continue;
+    int i, j;
+    cells.locate(er, 0, i, j);
+    double expected = 0;
+    bool contiguous = true;
+    RegionExit exit;
+    std::uint64_t steps = 0;
+    const WalkResult r = cells.walk(er, 0, er.partEnd(0), i, j,
+                                    [&](double ta, double tb, const std::vector<std::uint32_t>&) {
+                                      contiguous &= ta >= expected && tb > ta;
+                                      expected = tb;
+                                      return true;
+                                    },
+                                    exit, steps);
+    EXPECT_TRUE(contiguous);
+    EXPECT_NE(r, WalkResult::Stopped);
+    if (r == WalkResult::Exited) {
+      ++exited;
+      EXPECT_TRUE(exit.sStep != 0 || exit.qStep != 0);
+      EXPECT_GE(exit.t, expected);
+    } else {
+      ++finished;
+    }
+  }
+  EXPECT_GT(exited, 100);
+  EXPECT_GT(finished, 10);
+}
+
+// Conservative assignment: every object a ray hits in front of the eye is listed by the cell owning the hit.
+TEST(RegionCells, TheCellOwningAHitHoldsItsObject) {
+  Fixture f;
+  const SampleRect whole{0, 64, 0, 48};
+  const RegionCells cells(whole, f.lines, 3, f.all, f.boxes);
+  const core::Whitted shading(f.scene, {});
+  const core::BruteForce reference(f.scene, shading);
+  core::TraceCounters counters;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int hits = 0;
+  for (int n = 0; n < 3000; ++n) {
+    core::Ray ray;
+    ray.origin = core::Vec3(u(random) * 2, u(random) * 2, u(random) + 0.5);
+    ray.direction = glm::normalize(core::Vec3(u(random), u(random), u(random)));
+    const core::Hit truth = reference.closestHit(ray, counters);
+    const EyeFrameRay er = EyeFrameRay::of(ray, f.view);
+    if (!er.inFront(0) || !truth.found() || truth.t >= er.partEnd(0)) continue;
+    int i, j;
+    cells.locate(er, 0, i, j);
+    core::Hit found;
+    RegionExit exit;
+    std::uint64_t steps = 0;
+    cells.walk(er, 0, er.partEnd(0), i, j,
+               [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
+                 for (std::uint32_t o : objects) {
+                   const core::Hit h{core::nearestHit(f.scene.objects[o], ray, core::kInfinity), o};
+                   if (h.t >= ta && h.t < tb && h.closerThan(found)) found = h;
+                 }
+                 return !found.found();
+               },
+               exit, steps);
+    ++hits;
+    EXPECT_EQ(found.object, truth.object);
+    EXPECT_EQ(found.t, truth.t);
+  }
+  EXPECT_GT(hits, 500);
+}
+
+TEST(RegionMap, OwnersAndRoutesOnTheGrid) {
+  Fixture f;
+  const RegionMap map({0, 20, 40, 64}, {0, 16, 48}, f.lines);
+  EXPECT_EQ(map.processors(), 6);
+  EXPECT_EQ(map.ownerOfSample(0, 0), 0);
+  EXPECT_EQ(map.ownerOfSample(63, 47), 5);
+  EXPECT_EQ(map.ownerOfSample(20, 16), 4);
+  EXPECT_EQ(map.nextHop(0, 5), Face::Right);
+  EXPECT_EQ(map.nextHop(2, 5), Face::Down);
+  EXPECT_EQ(map.neighbour(0, Face::Left), -1);
+  EXPECT_EQ(map.neighbour(4, Face::Up), 1);
+  const core::Ray eye = f.view.eyeRay(30, 30);
+  EXPECT_EQ(map.ownerAt(EyeFrameRay::of(eye, f.view), 1.0), map.ownerOfSample(30, 30));
+}
+
+}  // namespace
+}  // namespace raycube::node
