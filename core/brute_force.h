@@ -29,7 +29,10 @@ class BruteForce {
       ++counters.intersectionTests;
       const double t = nearestHit(scene_.objects[i], ray, ray.tMax);
       if (t == kInfinity) continue;
-      if (!shading_.transmissive(i)) return 0;
+      if (!shading_.transmissive(i)) {
+        crossed.assign(1, Hit{t, i});  // the blocker, for the caller's shadow cache
+        return 0;
+      }
       crossed.push_back(Hit{t, i});
     }
     return attenuate(1.0, crossed, shading_);

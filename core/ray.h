@@ -28,6 +28,7 @@ struct TracedRay {
   std::uint32_t sample = 0;
   std::uint8_t depth = 1;  // the eye ray has depth 1 (SPD rule 7)
   RayKind kind = RayKind::Eye;
+  std::uint16_t light = 0;  // shadow rays: which light they go to
 };
 
 // A piece of a sample's colour: the host adds these up in any order (section 3.4).

@@ -14,7 +14,26 @@ struct RayTreeScratch {
   RayOutcome outcome;
   std::vector<TracedRay> pending;
   std::vector<Hit> crossed;
+  std::vector<std::uint32_t> lastBlocker;  // per light: Haines' shadow cache
 };
+
+// A database's transmission() leaves the opaque object that blocked a light ray in `crossed`; in a scene
+// without transmission that object is tried first for the next light ray to the same light (shadow
+// cache): it blocks again more often than not, and any blocker gives the same answer, 0.
+template <class Database>
+double shadowTransmission(const Whitted& shading, const Database& database, const TracedRay& ray,
+                          TraceCounters& counters, RayTreeScratch& scratch) {
+  if (shading.sceneTransmits()) return database.transmission(ray.ray, counters, scratch.crossed);
+  if (scratch.lastBlocker.size() <= ray.light) scratch.lastBlocker.resize(ray.light + 1u, UINT32_MAX);
+  std::uint32_t& cached = scratch.lastBlocker[ray.light];
+  if (cached != UINT32_MAX) {
+    ++counters.intersectionTests;
+    if (nearestHit(shading.scene().objects[cached], ray.ray, ray.ray.tMax) < kInfinity) return 0;
+  }
+  const double transmission = database.transmission(ray.ray, counters, scratch.crossed);
+  if (transmission == 0 && !scratch.crossed.empty()) cached = scratch.crossed.back().object;
+  return transmission;
+}
 
 template <class Database>
 void traceRayTree(const Whitted& shading, const Database& database, const TracedRay& eye, Framebuffer& frame,
@@ -27,7 +46,7 @@ void traceRayTree(const Whitted& shading, const Database& database, const Traced
     ++counters.of(ray.kind);
     scratch.outcome.clear();
     if (ray.kind == RayKind::Shadow) {
-      shading.finishShadow(ray, database.transmission(ray.ray, counters, scratch.crossed), scratch.outcome);
+      shading.finishShadow(ray, shadowTransmission(shading, database, ray, counters, scratch), scratch.outcome);
     } else {
       const Hit hit = database.closestHit(ray.ray, counters);
       if (hit.found())

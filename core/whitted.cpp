@@ -68,6 +68,7 @@ void Whitted::shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) co
     shadow.sample = ray.sample;
     shadow.depth = ray.depth;
     shadow.kind = RayKind::Shadow;
+    shadow.light = std::uint16_t(i);
     out.spawned.push_back(shadow);
   }
 
