@@ -16,6 +16,7 @@ namespace raycube::host {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr auto kHostBatchingPause = std::chrono::microseconds(500);
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -106,6 +107,9 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
       for (const auto& p : processors) shot += p->primariesShot();
       progress.advance(std::uint64_t(shot - reported));
       reported = shot;
+      // Let blocks pile up a little: one wake-up per batch of blocks, not per block (the host thread shares
+      // the two cores with every processor).
+      std::this_thread::sleep_for(kHostBatchingPause);
       queues::waitUntil(channel.doorbell(), [&] { return interconnect.terminated() || channel.anyPending(); });
     }
     for (std::thread& t : threads) t.join();

@@ -68,7 +68,7 @@ class SharedMemoryMachine::Endpoint final : public node::Transport {
     machine_.channel_.doorbell().ring();
   }
   bool terminated() const override { return machine_.terminated(); }
-  void waitUntil(const std::function<bool()>& ready) override { queues::waitUntil(*machine_.bells_[id_], ready); }
+  void waitUntil(const std::function<bool()>& ready) override { queues::waitUntil(*machine_.bells_[id_], ready, queues::WaitPolicy{128, 8}); }
 
  private:
   SharedMemoryMachine& machine_;
@@ -86,7 +86,7 @@ SharedMemoryMachine::SharedMemoryMachine(const node::RegionMap& regions, std::si
         for (int p = 0; p < regions.processors(); ++p) bells.push_back(std::make_unique<queues::Doorbell>());
         return bells;
       }()),
-      channel_(std::size_t(regions.processors()), ContributionChannel::kDefaultBlocksPerSender, rawBells(bells_)) {
+      channel_(std::size_t(regions.processors()), kContributionBlocksPerProcessor, rawBells(bells_)) {
   const int processors = regions.processors();
   queues_.resize(std::size_t(processors) * node::kFaces);
   for (int p = 0; p < processors; ++p) {

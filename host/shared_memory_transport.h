@@ -16,6 +16,8 @@ namespace raycube::host {
 
 using RayQueue = queues::SpscQueue<node::RayMessage, queues::Accounting::kOn>;
 using ContributionChannel = queues::HostChannel<core::Contribution, 256>;
+// Blocks a processor may have in flight to the host before it waits: enough for the host's batching pause.
+inline constexpr std::size_t kContributionBlocksPerProcessor = 32;
 
 class SharedMemoryMachine {
  public:

@@ -9,6 +9,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kInboxBatch = 32;
+constexpr std::size_t kBacklogLimit = 64;
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -40,7 +41,9 @@ void LogicalProcessor::run() {
     const std::size_t n = transport_.receive(inbox_);
     for (std::size_t k = 0; k < n; ++k) onReceived(inbox_[k]);
     progressed |= n > 0;
-    if (n == 0) progressed |= shootNextPrimary();
+    // Back-pressure, as on the iPSC where a full FIFO locked the synthesis task: no new primary rays while
+    // rays wait for room in a neighbour's FIFO. Received rays are still consumed, so nothing deadlocks.
+    if (n == 0 && backlog() < kBacklogLimit) progressed |= shootNextPrimary();
     if (!progressed) onIdle();
   }
 }
@@ -248,6 +251,12 @@ void LogicalProcessor::onReceived(const RayMessage& m) {
   }
 }
 
+std::size_t LogicalProcessor::backlog() const {
+  std::size_t waiting = 0;
+  for (const auto& pending : overflow_) waiting += pending.size();
+  return waiting;
+}
+
 bool LogicalProcessor::passive() const {
   if (nextPrimary_ < area_.count() || !local_.empty()) return false;
   for (const auto& pending : overflow_)
@@ -283,7 +292,7 @@ void LogicalProcessor::onIdle() {
     return;
   }
   const auto start = Clock::now();
-  const bool blocked = !passive() && nextPrimary_ >= area_.count();
+  const bool blocked = backlog() > 0;
   transport_.waitUntil([&] {
     if (transport_.terminated() || transport_.anyIncoming()) return true;
     for (int f = 0; f < kFaces; ++f)

@@ -80,6 +80,7 @@ class LogicalProcessor {
   void onReceived(const RayMessage& message);
   void onIdle();
   bool passive() const;
+  std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
   const MachineContext& context_;
   NodeSetup setup_;
