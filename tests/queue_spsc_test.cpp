@@ -1,0 +1,243 @@
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "queues/spsc_queue.h"
+#include "tests/queue_test_support.h"
+
+namespace raycube::queues {
+namespace {
+
+using testing::mix;
+using testing::scaled;
+
+// About the size of a ray message, so that a torn copy of a slot is caught by the payload check.
+struct Message {
+  std::uint64_t sequence = 0;
+  std::uint64_t check = 0;
+  std::array<std::uint64_t, 10> payload{};
+};
+
+Message makeMessage(std::uint64_t sequence) {
+  Message m{sequence, mix(sequence), {}};
+  m.payload.front() = ~sequence;
+  m.payload.back() = sequence * 3;
+  return m;
+}
+
+bool intact(const Message& m) {
+  return m.check == mix(m.sequence) && m.payload.front() == ~m.sequence && m.payload.back() == m.sequence * 3;
+}
+
+enum class Mode { kSingle, kBatch, kSleeping };
+
+std::string modeName(Mode mode) {
+  switch (mode) {
+    case Mode::kSingle:
+      return "Single";
+    case Mode::kBatch:
+      return "Batch";
+    case Mode::kSleeping:
+      return "Sleeping";
+  }
+  return "?";
+}
+
+class SpscFuzz : public ::testing::TestWithParam<std::tuple<std::size_t, Mode>> {};
+
+// Two threads: every message arrives once, in order, intact; the checksums of both sides agree.
+TEST_P(SpscFuzz, DeliversEveryMessageOnceInOrder) {
+  const auto [capacity, mode] = GetParam();
+  const std::uint64_t count = scaled(mode == Mode::kSingle ? 10'000'000 : 1'000'000, 100'000);
+  Doorbell consumerBell, producerBell;
+  SpscOptions options{.capacity = capacity};
+  if (mode == Mode::kSleeping) {
+    options.consumerBell = &consumerBell;
+    options.producerBell = &producerBell;
+    options.wait = {.spins = 16, .yields = 0};
+  }
+  SpscQueue<Message> queue(options);
+
+  std::uint64_t producerSum = 0;
+  std::thread producer([&] {
+    std::vector<Message> batch;
+    for (std::uint64_t sequence = 0; sequence < count;) {
+      if (mode == Mode::kBatch) {
+        const std::uint64_t n = std::min<std::uint64_t>(1 + sequence % 17, count - sequence);
+        batch.clear();
+        for (std::uint64_t i = 0; i < n; ++i) {
+          batch.push_back(makeMessage(sequence + i));
+          producerSum += batch.back().check;
+        }
+        queue.pushN(batch);
+        sequence += n;
+      } else {
+        const Message m = makeMessage(sequence++);
+        producerSum += m.check;
+        queue.push(m);
+      }
+    }
+  });
+
+  std::uint64_t consumerSum = 0, expected = 0, damaged = 0, misordered = 0;
+  std::array<Message, 13> buffer;
+  while (expected < count) {
+    const std::size_t n = mode == Mode::kBatch ? queue.popN(buffer) : (buffer[0] = queue.pop(), 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Message& m = buffer[i];
+      if (!intact(m)) ++damaged;
+      if (m.sequence != expected) ++misordered;
+      consumerSum += m.check;
+      expected = m.sequence + 1;
+    }
+  }
+  producer.join();
+
+  EXPECT_EQ(damaged, 0u);
+  EXPECT_EQ(misordered, 0u);
+  EXPECT_EQ(expected, count);
+  EXPECT_EQ(consumerSum, producerSum);
+  EXPECT_TRUE(queue.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(Capacities, SpscFuzz,
+                         ::testing::Combine(::testing::Values(1, 2, 3, 128, 4096),
+                                            ::testing::Values(Mode::kSingle, Mode::kBatch, Mode::kSleeping)),
+                         [](const auto& info) {
+                           return "Capacity" + std::to_string(std::get<0>(info.param)) +
+                                  modeName(std::get<1>(info.param));
+                         });
+
+// Indices count messages forever; start them just short of 2^64 and run through the wrap.
+TEST(SpscQueue, IndicesWrapAroundAtAnyCapacity) {
+  for (std::size_t capacity : {1, 2, 3, 5, 128, 130}) {
+    SCOPED_TRACE("capacity " + std::to_string(capacity));
+    const std::uint64_t nearMax = std::numeric_limits<std::uint64_t>::max() - 2 * capacity - 3;
+    SpscQueue<std::uint64_t> queue({.capacity = capacity, .firstIndex = nearMax});
+    std::uint64_t nextIn = 0, nextOut = 0;
+    for (int round = 0; round < 8; ++round) {
+      while (queue.tryPush(nextIn)) ++nextIn;  // fill to the brim
+      ASSERT_EQ(queue.size(), capacity);
+      ASSERT_FALSE(queue.tryPush(nextIn));
+      for (std::size_t i = 0; i < (capacity + 1) / 2; ++i) {  // drain half
+        std::uint64_t value = 0;
+        ASSERT_TRUE(queue.tryPop(value));
+        ASSERT_EQ(value, nextOut++);
+      }
+    }
+    std::uint64_t value = 0;
+    while (queue.tryPop(value)) ASSERT_EQ(value, nextOut++);
+    EXPECT_EQ(nextOut, nextIn);
+    EXPECT_GT(nextIn, 4 * capacity);  // went well past the wrap
+  }
+}
+
+TEST(SpscQueue, TwoThreadsAcrossTheWrap) {
+  const std::uint64_t count = scaled(1'000'000, 100'000);
+  SpscQueue<std::uint64_t> queue(
+      {.capacity = 3, .firstIndex = std::numeric_limits<std::uint64_t>::max() - 1000});
+  std::thread producer([&] {
+    for (std::uint64_t i = 0; i < count; ++i) queue.push(i);
+  });
+  std::uint64_t misordered = 0;
+  for (std::uint64_t i = 0; i < count; ++i) misordered += queue.pop() != i;
+  producer.join();
+  EXPECT_EQ(misordered, 0u);
+}
+
+TEST(SpscQueue, BatchPushTakesTheLongestPrefixThatFits) {
+  SpscQueue<int> queue(5);
+  const std::vector<int> first{1, 2, 3}, second{4, 5, 6, 7};
+  EXPECT_EQ(queue.tryPushN(first), 3u);
+  EXPECT_EQ(queue.tryPushN(second), 2u);
+  EXPECT_EQ(queue.tryPushN(second), 0u);
+  std::array<int, 4> out{};
+  EXPECT_EQ(queue.tryPopN(out), 4u);
+  EXPECT_EQ(out, (std::array<int, 4>{1, 2, 3, 4}));
+  EXPECT_EQ(queue.tryPopN(out), 1u);
+  EXPECT_EQ(out[0], 5);
+  EXPECT_EQ(queue.tryPopN(out), 0u);
+}
+
+TEST(SpscQueue, DefaultCapacityIsThePapersFifo) {
+  SpscQueue<int> queue;
+  EXPECT_EQ(queue.capacity(), 128u);
+}
+
+TEST(SpscQueue, RejectsZeroCapacity) {
+  EXPECT_THROW(SpscQueue<int>(0), std::invalid_argument);
+}
+
+TEST(SpscQueue, AccountingCountsRefusalsHighWaterAndOccupancy) {
+  SpscQueue<int, Accounting::kOn> queue(4);
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(queue.tryPush(i));  // occupancies 1, 2, 3, 4
+  EXPECT_FALSE(queue.tryPush(9));
+  EXPECT_FALSE(queue.tryPush(9));
+  int value = 0;
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(queue.tryPop(value));
+  EXPECT_FALSE(queue.tryPop(value));
+
+  const QueueStats stats = queue.stats();
+  EXPECT_EQ(stats.capacity, 4u);
+  EXPECT_EQ(stats.pushed, 4u);
+  EXPECT_EQ(stats.popped, 4u);
+  EXPECT_EQ(stats.refusedPushes, 2u);
+  EXPECT_EQ(stats.emptyPops, 1u);
+  EXPECT_EQ(stats.highWater, 4u);
+  EXPECT_EQ(stats.occupancySamples, 4u);
+  EXPECT_DOUBLE_EQ(stats.meanOccupancy(), 2.5);
+  // Occupancy 1/4 -> bucket 4, 2/4 -> 8, 3/4 -> 12, full -> the last bucket.
+  EXPECT_EQ(stats.occupancyHistogram[4], 1u);
+  EXPECT_EQ(stats.occupancyHistogram[8], 1u);
+  EXPECT_EQ(stats.occupancyHistogram[12], 1u);
+  EXPECT_EQ(stats.occupancyHistogram[kOccupancyBuckets - 1], 1u);
+}
+
+TEST(SpscQueue, AccountingTimesBlockingOnFullAndEmpty) {
+  SpscQueue<int, Accounting::kOn> queue(1);
+  queue.push(1);
+  std::thread consumer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_EQ(queue.pop(), 1);  // frees the producer, which is blocked on the full queue
+    EXPECT_EQ(queue.pop(), 2);
+    EXPECT_EQ(queue.pop(), 3);  // blocks on the empty queue until the producer wakes up
+  });
+  queue.push(2);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  queue.push(3);
+  consumer.join();
+  const QueueStats stats = queue.stats();
+  EXPECT_GE(stats.nanosBlockedFull, 10'000'000u);
+  EXPECT_GE(stats.nanosBlockedEmpty, 10'000'000u);
+  EXPECT_GE(stats.refusedPushes, 1u);
+}
+
+TEST(SpscQueue, WithoutAccountingStatsStayZeroAndCostNoSpace) {
+  SpscQueue<int> queue(4);
+  queue.push(1);
+  EXPECT_EQ(queue.stats().pushed, 0u);
+  EXPECT_EQ(queue.stats().capacity, 4u);
+  EXPECT_LT(sizeof(SpscQueue<int>), sizeof(SpscQueue<int, Accounting::kOn>));
+}
+
+TEST(QueueStats, AddingKeepsTheHighestHighWater) {
+  QueueStats a, b;
+  a.highWater = 7;
+  a.pushed = 2;
+  b.highWater = 3;
+  b.pushed = 5;
+  b.occupancyHistogram[2] = 1;
+  a += b;
+  EXPECT_EQ(a.highWater, 7u);
+  EXPECT_EQ(a.pushed, 7u);
+  EXPECT_EQ(a.occupancyHistogram[2], 1u);
+}
+
+}  // namespace
+}  // namespace raycube::queues
