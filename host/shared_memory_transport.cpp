@@ -68,7 +68,7 @@ class SharedMemoryMachine::Endpoint final : public node::Transport {
     machine_.channel_.doorbell().ring();
   }
   bool terminated() const override { return machine_.terminated(); }
-  void waitUntil(const std::function<bool()>& ready) override { queues::waitUntil(*machine_.bells_[id_], ready, queues::WaitPolicy{128, 8}); }
+  void waitUntil(const std::function<bool()>& ready) override { queues::waitUntil(*machine_.bells_[id_], ready, queues::WaitPolicy{4, 8}); }
 
  private:
   SharedMemoryMachine& machine_;
