@@ -25,7 +25,7 @@ class BallsMatchesSpd : public testing::TestWithParam<int> {};
 TEST_P(BallsMatchesSpd, ElementByElement) {
   const int size = GetParam();
   const Scene generated = makeBalls(size);
-  const Scene file = readNff(std::filesystem::path(RAYCUBE_SHARED_DIR) / "scenes" /
+  const Scene file = readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" /
                              ("balls" + std::to_string(size) + ".nff"));
   EXPECT_EQ(generated.name, file.name);
 

@@ -13,7 +13,7 @@
 namespace raycube::core {
 namespace {
 
-const std::filesystem::path kScenes = std::filesystem::path(RAYCUBE_SHARED_DIR) / "scenes";
+const std::filesystem::path kScenes = std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes";
 
 std::string slurp(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
