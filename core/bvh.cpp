@@ -10,12 +10,20 @@ namespace {
 constexpr std::uint32_t kLeafSize = 1;
 }
 
-Bvh::Bvh(const Scene& scene, const Whitted& shading) : scene_(scene), shading_(shading) {
-  std::vector<Box> boxes;
-  boxes.reserve(scene.objects.size());
-  for (const Object& o : scene.objects) boxes.push_back(boundsOf(o));
-  order_.resize(scene.objects.size());
-  for (std::uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
+namespace {
+std::vector<std::uint32_t> allObjects(const Scene& scene) {
+  std::vector<std::uint32_t> all(scene.objects.size());
+  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  return all;
+}
+}  // namespace
+
+Bvh::Bvh(const Scene& scene, const Whitted& shading) : Bvh(scene, shading, allObjects(scene)) {}
+
+Bvh::Bvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects)
+    : scene_(scene), shading_(shading), order_(std::move(objects)) {
+  std::vector<Box> boxes(scene.objects.size());
+  for (std::uint32_t o : order_) boxes[o] = boundsOf(scene.objects[o]);
   nodes_.reserve(2 * order_.size() + 1);
   if (!order_.empty()) build(boxes, 0, std::uint32_t(order_.size()));
 }

@@ -14,6 +14,8 @@ namespace raycube::core {
 class Bvh {
  public:
   Bvh(const Scene& scene, const Whitted& shading);
+  // Over a subset of the scene's objects (indices), e.g. what a processor holds.
+  Bvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects);
 
   Hit closestHit(const Ray& ray, TraceCounters& counters) const;
   double transmission(const Ray& ray, TraceCounters& counters, std::vector<Hit>& crossed) const;

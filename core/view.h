@@ -38,6 +38,7 @@ class View {
   // The eye frame: x right, y up, z forward (depth).
   Vec3 toEye(const Vec3& world) const;
   Vec3 directionToEye(const Vec3& direction) const;
+  Vec3 fromEye(const Vec3& eyeFrame) const { return eye_ + eyeFrame.x * right_ + eyeFrame.y * up_ + eyeFrame.z * forward_; }
   const Vec3& eye() const { return eye_; }
   double hither() const { return hither_; }
 

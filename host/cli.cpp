@@ -27,6 +27,9 @@ constexpr int kMaxProcessorsPerSide = 64;
 
 const std::map<std::string, RenderMode> kModes{
     {"reference", RenderMode::Reference}, {"image-parallel", RenderMode::ImageParallel}, {"machine", RenderMode::Machine}};
+const std::map<std::string, node::LightRayMode> kLightRays{{"messages", node::LightRayMode::Messages},
+                                                           {"cone", node::LightRayMode::Cone},
+                                                           {"pyramid", node::LightRayMode::Pyramid}};
 const std::map<std::string, core::Sampling> kSamplings{{"centers", core::Sampling::Centers},
                                                        {"corners", core::Sampling::Corners}};
 
@@ -50,6 +53,7 @@ struct RenderCommand {
   bool quiet = false;
   std::string procs = "4x4";
   std::string overlayPath;
+  std::string lightRays = "pyramid";
   MachineSettings machine;
 };
 
@@ -75,6 +79,7 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
     case RenderMode::ImageParallel: return renderImageParallel(scene, settings);
     case RenderMode::Machine: {
       MachineSettings machine = cmd.machine;
+      machine.lightRays = kLightRays.at(cmd.lightRays);
       std::tie(machine.rows, machine.columns) = parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
       report.emplace();
       return renderMachine(scene, settings, machine, &*report);
@@ -148,6 +153,9 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
   render->add_option("--cell-level", cmd.machine.cellLevel, "Recursive halvings of each pixel area into super-cells")
       ->check(CLI::Range(0, 8));
+  render->add_option("--light-rays", cmd.lightRays,
+                     "messages (light rays travel) | cone | pyramid (traced where they start, 3.7.2)")
+      ->transform(CLI::IsMember(keysOf(kLightRays), CLI::ignore_case));
   render->add_option("-o,--output", cmd.output, "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
   render->add_option("--overlay", cmd.overlayPath, "Machine: write the image with regions and their load (.png)");

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <thread>
 
@@ -28,13 +29,71 @@ std::vector<int> evenCuts(int samples, int parts) {
   return cuts;
 }
 
+// Bounds of x over {x in [lo, hi], a z <= x <= b z, z in [z0, z1]} (a, b may be infinite).
+std::pair<double, double> clipToWedge(double lo, double hi, double a, double b, double z0, double z1) {
+  if (std::isfinite(a)) lo = std::max(lo, std::min(a * z0, a * z1));
+  if (std::isfinite(b)) hi = std::min(hi, std::max(b * z0, b * z1));
+  return {lo, hi};
+}
+
+// Where the region's light rays can start: the part in front of the eye of each of its objects' boxes,
+// clipped to the region's wedge, all in one eye-frame box (3.7.2 uses the region's vertices).
+node::LightSources withCorners(node::LightSources sources, const core::View& view) {
+  if (sources.eyeBox.empty()) return sources;
+  sources.eyeBox = sources.eyeBox.padded();
+  for (int corner = 0; corner < 8; ++corner) {
+    const core::Box& e = sources.eyeBox;
+    const core::Vec3 eyeFrame(corner & 1 ? e.hi.x : e.lo.x, corner & 2 ? e.hi.y : e.lo.y, corner & 4 ? e.hi.z : e.lo.z);
+    sources.corners.push_back(view.fromEye(core::Vec3(eyeFrame.x, -eyeFrame.y, eyeFrame.z)));  // y down -> up
+  }
+  return sources;
+}
+
+node::LightSources lightSourcesOf(const node::ColumnSlab& region, const std::vector<std::uint32_t>& objects,
+                                  const std::vector<node::EyeBox>& boxes, const core::View& view) {
+  node::LightSources sources;
+  for (std::uint32_t o : objects) {
+    const node::EyeBox& b = boxes[o];
+    const double z0 = std::max(b.lo.z, 0.0), z1 = b.hi.z;
+    if (z0 > z1) continue;
+    const auto [x0, x1] = clipToWedge(b.lo.x, b.hi.x, region.sLo, region.sHi, z0, z1);
+    const auto [y0, y1] = clipToWedge(b.lo.y, b.hi.y, region.qLo, region.qHi, z0, z1);
+    if (x0 > x1 || y0 > y1) continue;
+    sources.eyeBox.extend(core::Vec3(x0, y0, z0));
+    sources.eyeBox.extend(core::Vec3(x1, y1, z1));
+  }
+  return withCorners(sources, view);
+}
+
+// Light rays can also start on the rear parts of objects reaching behind the eye (any processor's).
+node::LightSources rearLightSourcesOf(const std::vector<std::uint32_t>& rear, const std::vector<node::EyeBox>& boxes,
+                                      const core::View& view) {
+  node::LightSources sources;
+  for (std::uint32_t o : rear) {
+    sources.eyeBox.extend(boxes[o].lo);
+    sources.eyeBox.extend(core::Vec3(boxes[o].hi.x, boxes[o].hi.y, std::min(boxes[o].hi.z, 0.0)));
+  }
+  return withCorners(sources, view);
+}
+
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
-// plane go to every processor (see EyeFrameRay: the rear space belongs to all).
-std::vector<node::NodeSetup> pruneDatabase(const node::RegionMap& regions, const node::ScreenLines& lines,
-                                           const std::vector<node::EyeBox>& boxes, int cellLevel) {
+// plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
+// pyramids, also the objects its light rays can meet.
+std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core::View& view,
+                                           const node::RegionMap& regions, const node::ScreenLines& lines,
+                                           const std::vector<node::EyeBox>& boxes, const MachineSettings& machine) {
+  std::vector<std::uint32_t> all(boxes.size());
+  for (std::uint32_t o = 0; o < all.size(); ++o) all[o] = o;
   std::vector<std::uint32_t> rear;
   for (std::uint32_t o = 0; o < boxes.size(); ++o)
     if (node::reachesBehindEye(boxes[o])) rear.push_back(o);
+  std::vector<std::vector<std::uint32_t>> rearLightObjects;
+  node::LightSources rearSources;
+  if (machine.lightRays != node::LightRayMode::Messages) {
+    rearSources = rearLightSourcesOf(rear, boxes, view);
+    for (const core::Light& light : scene.lights)
+      rearLightObjects.push_back(node::objectsInLightVolume(machine.lightRays, light.position, rearSources, scene, all));
+  }
   std::vector<node::NodeSetup> setups;
   for (int p = 0; p < regions.processors(); ++p) {
     const node::SampleRect a = regions.areaOf(p);
@@ -42,10 +101,19 @@ std::vector<node::NodeSetup> pruneDatabase(const node::RegionMap& regions, const
                                   core::kInfinity};
     node::NodeSetup setup;
     setup.id = p;
-    setup.cellLevel = cellLevel;
+    setup.cellLevel = machine.cellLevel;
     setup.rearObjects = rear;
     for (std::uint32_t o = 0; o < boxes.size(); ++o)
       if (node::mayTouch(boxes[o], region)) setup.objects.push_back(o);
+    setup.lightRays = machine.lightRays;
+    if (machine.lightRays != node::LightRayMode::Messages) {
+      setup.lightSources = lightSourcesOf(region, setup.objects, boxes, view);
+      for (const core::Light& light : scene.lights)
+        setup.lightObjects.push_back(
+            node::objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, scene, all));
+      setup.rearLightSources = rearSources;
+      setup.rearLightObjects = rearLightObjects;
+    }
     setups.push_back(std::move(setup));
   }
   return setups;
@@ -73,7 +141,7 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   SharedMemoryMachine interconnect(regions, machine.queueCapacity);
   std::vector<std::unique_ptr<JitterTransport>> jitters;
   std::vector<std::unique_ptr<node::LogicalProcessor>> processors;
-  for (node::NodeSetup& setup : pruneDatabase(regions, lines, boxes, machine.cellLevel)) {
+  for (node::NodeSetup& setup : pruneDatabase(scene, view, regions, lines, boxes, machine)) {
     const int id = setup.id;
     node::Transport* transport = &interconnect.endpoint(id);
     if (machine.jitterSeed > 0) {

@@ -18,6 +18,7 @@ struct MachineSettings {
   int columns = 4;
   std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
   int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
+  node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
   unsigned jitterSeed = 0;          // tests: > 0 injects random delays around every transport operation
 };
 

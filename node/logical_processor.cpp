@@ -31,6 +31,17 @@ LogicalProcessor::LogicalProcessor(const MachineContext& context, NodeSetup setu
   stats_.objects = cells_.objectCount();
   stats_.rearObjects = setup_.rearObjects.size();
   stats_.cells = cells_.cellCount();
+  if (setup_.lightRays != LightRayMode::Messages) {
+    std::vector<char> inCells(context.scene.objects.size(), 0);
+    for (std::uint32_t o : setup_.objects) inCells[o] = 1;
+    for (const auto& objects : setup_.lightObjects) {
+      lightVolumes_.emplace_back(context.scene, context.shading, objects);
+      stats_.lightObjects += objects.size();
+      for (std::uint32_t o : objects) stats_.extraLightObjects += inCells[o] ? 0 : 1;
+    }
+    for (const auto& objects : setup_.rearLightObjects)
+      rearLightVolumes_.emplace_back(context.scene, context.shading, objects);
+  }
   holdingToken_ = setup_.id == 0;  // 3.6: at the start processor 0 holds the token
 }
 
@@ -115,6 +126,8 @@ void LogicalProcessor::evaluate(RayMessage m, bool primary) {
     std::fill(mailboxStamp_.begin(), mailboxStamp_.end(), 0u);
     rayStamp_ = 1;
   }
+  if (double transmission; ray.kind == core::RayKind::Shadow && tracedWhereItStarts(m, transmission))
+    return finishRay(ray, core::Hit{}, transmission);
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
   const double tMax = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
@@ -161,6 +174,26 @@ void LogicalProcessor::evaluate(RayMessage m, bool primary) {
     m.destination = std::uint16_t(context_.regions.idOf(r, c));
     return send(m);
   }
+}
+
+// 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of
+// its light's volume: traced here, in one piece, exactly as the reference traces it; no message.
+bool LogicalProcessor::tracedWhereItStarts(const RayMessage& m, double& transmission) {
+  if (lightVolumes_.empty() || m.tEnter != m.ray.ray.tMin || m.attenuation != 1) return false;
+  core::Vec3 origin = context_.view.toEye(m.ray.ray.origin);
+  origin.y = -origin.y;
+  auto inside = [&](const core::Box& box) {
+    for (int a = 0; a < 3; ++a)
+      if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
+    return true;
+  };
+  const core::Bvh* volume = inside(setup_.lightSources.eyeBox)       ? &lightVolumes_[m.ray.light]
+                            : inside(setup_.rearLightSources.eyeBox) ? &rearLightVolumes_[m.ray.light]
+                                                                     : nullptr;
+  if (volume == nullptr) return false;
+  ++stats_.lightRaysTracedLocally;
+  transmission = volume->transmission(m.ray.ray, stats_.processed, crossed_);
+  return true;
 }
 
 void LogicalProcessor::finishRay(const core::TracedRay& ray, const core::Hit& hit, double attenuation) {

@@ -12,6 +12,8 @@
 #include "core/trace_stats.h"
 #include "core/view.h"
 #include "core/whitted.h"
+#include "core/bvh.h"
+#include "node/light_volume.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
 #include "node/region_map.h"
@@ -25,6 +27,14 @@ struct NodeSetup {
   int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
   std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
+  // 3.7.2: with light cones or pyramids, the objects each light's rays from this region can meet, and the
+  // eye-frame box those rays start in; light rays starting elsewhere (behind the eye) travel as messages.
+  LightRayMode lightRays = LightRayMode::Messages;
+  LightSources lightSources;
+  std::vector<std::vector<std::uint32_t>> lightObjects;  // per light
+  // The same for light rays starting behind the eye (on a rear object), identical for every processor.
+  LightSources rearLightSources;
+  std::vector<std::vector<std::uint32_t>> rearLightObjects;  // per light
 };
 
 // The read-only world every processor shares.
@@ -41,6 +51,9 @@ struct NodeStats {
   int id = 0;
   SampleRect area;
   std::size_t objects = 0, rearObjects = 0, cells = 0;
+  std::size_t lightObjects = 0;       // objects held for light rays (summed over lights)
+  std::size_t extraLightObjects = 0;  // of those, objects not already in the region's cells
+  std::uint64_t lightRaysTracedLocally = 0;
   core::TraceCounters processed;                 // ray segments evaluated here, by kind; tests; cell steps
   std::array<std::uint64_t, core::kRayKinds> spawned{};   // rays created here (eye rays and shading)
   std::array<std::uint64_t, core::kRayKinds> finished{};  // rays whose evaluation ended here
@@ -69,6 +82,7 @@ class LogicalProcessor {
   bool shootNextPrimary();
   void evaluate(RayMessage message, bool primary);
   void finishRay(const core::TracedRay& ray, const core::Hit& hit, double attenuation);
+  bool tracedWhereItStarts(const RayMessage& message, double& transmission);
   template <class Cells>
   bool visitInterval(const core::TracedRay& ray, double ta, double tb, const Cells& objects, core::Hit& hit,
                      double& attenuation);
@@ -87,6 +101,8 @@ class LogicalProcessor {
   Transport& transport_;
   SampleRect area_;
   RegionCells cells_;
+  std::vector<core::Bvh> lightVolumes_;      // per light, when light rays are traced where they start
+  std::vector<core::Bvh> rearLightVolumes_;  // per light, for light rays starting behind the eye
   long long nextPrimary_ = 0;
   std::atomic<long long> primariesShot_{0};
   std::vector<RayMessage> local_;                  // rays spawned here, still to evaluate here
