@@ -57,11 +57,15 @@ std::string gridName(Grid g) {
   return std::to_string(g.rows) + "x" + std::to_string(g.columns);
 }
 
-MachineSettings machineFor(Grid grid, std::size_t capacity) {
+// Light rays travel as messages unless a test says otherwise: the heaviest traffic, the strictest test of
+// the walk across regions. Light-ray deletion (cone, pyramid) has its own tests below.
+MachineSettings machineFor(Grid grid, std::size_t capacity,
+                           node::LightRayMode lightRays = node::LightRayMode::Messages) {
   MachineSettings m;
   m.rows = grid.rows;
   m.columns = grid.columns;
   m.queueCapacity = capacity;
+  m.lightRays = lightRays;
   return m;
 }
 
@@ -171,6 +175,54 @@ TEST(MachineTest, Balls2MatchesReferenceOnEveryGridAndCapacity) {
       renderAndCompare(
           scene, reference, settings, machineFor(g, capacity),
           "balls2 " + std::to_string(side) + "px " + gridName(g) + " capacity " + std::to_string(capacity));
+}
+
+// 3.7.2: with light cones or pyramids every light ray is traced where it starts, and nothing changes.
+TEST(MachineTest, LightConesAndPyramidsDeleteLightRayMessagesAndKeepTheImage) {
+  for (const char* name : {"balls2", "gears1", "teapot2"}) {
+    const core::Scene scene = std::string(name) == "balls2"
+                                  ? core::makeBalls(2)
+                                  : core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" /
+                                                  (std::string(name) + ".nff"));
+    const int side = sanitized() ? 16 : 32;
+    const RenderSettings settings = settingsFor(side);
+    const RenderResult reference = renderReference(scene, settings);
+    for (node::LightRayMode mode : {node::LightRayMode::Cone, node::LightRayMode::Pyramid}) {
+      for (Grid g : std::vector<Grid>{{1, 1}, {4, 4}, {3, 5}}) {
+        for (std::size_t capacity : {std::size_t(1), std::size_t(128)}) {
+          const std::string label = std::string(name) + (mode == node::LightRayMode::Cone ? " cone " : " pyramid ") +
+                                    gridName(g) + " capacity " + std::to_string(capacity);
+          MachineReport report;
+          const RenderResult result =
+              renderMachineWatched(scene, settings, machineFor(g, capacity, mode), report, label);
+          expectMachineMatchesReference(reference, result, report, label);
+          std::uint64_t lightMessages = 0, tracedHere = 0;
+          for (const ProcessorReport& p : report.processors) {
+            lightMessages += p.node.messagesByKind[std::size_t(core::RayKind::Shadow)];
+            tracedHere += p.node.lightRaysTracedLocally;
+          }
+          EXPECT_EQ(lightMessages, 0u) << label;
+          EXPECT_EQ(tracedHere, reference.counters.of(core::RayKind::Shadow)) << label;
+        }
+      }
+    }
+  }
+}
+
+// The pyramid fits a region's light volume at least as tightly as the cone (3.7.2), processor by processor.
+TEST(MachineTest, PyramidHoldsNoMoreObjectsThanCone) {
+  const core::Scene scene = core::makeBalls(3);
+  const RenderSettings settings = settingsFor(24);
+  MachineReport cone, pyramid;
+  renderMachine(scene, settings, machineFor({4, 4}, 128, node::LightRayMode::Cone), &cone);
+  renderMachine(scene, settings, machineFor({4, 4}, 128, node::LightRayMode::Pyramid), &pyramid);
+  std::size_t coneTotal = 0, pyramidTotal = 0;
+  for (std::size_t p = 0; p < cone.processors.size(); ++p) {
+    coneTotal += cone.processors[p].node.lightObjects;
+    pyramidTotal += pyramid.processors[p].node.lightObjects;
+  }
+  EXPECT_LE(pyramidTotal, coneTotal);
+  EXPECT_GT(coneTotal, 0u);
 }
 
 TEST(MachineTest, Balls2CornerSamplingMatchesReference) {

@@ -98,6 +98,7 @@ TEST(TerminationTest, CapacityOneOnEightByEightFinishes) {
   machine.rows = 8;
   machine.columns = 8;
   machine.queueCapacity = 1;
+  machine.lightRays = node::LightRayMode::Messages;  // the most traffic: light rays travel too
   MachineReport report;
   const RenderResult result = renderMachineWatched(scene, settings, machine, report, "balls2 8x8 capacity 1");
   expectComplete(reference, result, report, "balls2 8x8 capacity 1");
@@ -137,6 +138,8 @@ TEST(TerminationTest, NeverDeclaredEarlyUnderRandomDelays) {
     machine.columns = grids[(run / 3) % 4][1];
     machine.queueCapacity = std::size_t(1 + run % 4);
     machine.jitterSeed = unsigned(run + 1);
+    // Mostly the heaviest traffic (light rays as messages), every third run the default pyramids.
+    machine.lightRays = run % 3 == 2 ? node::LightRayMode::Pyramid : node::LightRayMode::Messages;
     const std::string label = "jitter seed " + std::to_string(machine.jitterSeed) + ", balls2 " +
                               std::to_string(side) + "px, " + std::to_string(machine.rows) + "x" +
                               std::to_string(machine.columns) + ", capacity " +
