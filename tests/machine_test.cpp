@@ -3,6 +3,7 @@
 // every contribution reaches the host, eye rays never leave their processor (3.1), and the space behind
 // the eye plane, which no pyramid covers, is traced too.
 #include "host/machine.h"
+#include "machine_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -29,25 +30,7 @@
 namespace raycube::host {
 namespace {
 
-// Sanitized builds run 5-20x slower: they get a representative subset of grids, capacities and scenes.
-bool sanitized() {
-  const char* value = std::getenv("RAYCUBE_SANITIZED");
-  return value != nullptr && std::string(value) == "1";
-}
-
-// A run that has not finished by then is deadlocked or has lost its termination: fail loudly, not hang CI.
-std::chrono::seconds watchdogLimit() {
-  return std::chrono::seconds(sanitized() ? 600 : 120);
-}
-
-RenderSettings settingsFor(int side, core::Sampling sampling = core::Sampling::Centers) {
-  RenderSettings s;
-  s.width = side;
-  s.height = side;
-  s.sampling = sampling;
-  s.progress = false;
-  return s;
-}
+using namespace testing_support;
 
 struct Grid {
   int rows, columns;
@@ -67,24 +50,6 @@ MachineSettings machineFor(Grid grid, std::size_t capacity,
   m.queueCapacity = capacity;
   m.lightRays = lightRays;
   return m;
-}
-
-// renderMachine on a worker thread; std::abort() (after saying why) if it does not finish in time.
-RenderResult renderMachineWatched(const core::Scene& scene, const RenderSettings& settings,
-                                  const MachineSettings& machine, MachineReport& report,
-                                  const std::string& label) {
-  std::packaged_task<RenderResult()> task([&] { return renderMachine(scene, settings, machine, &report); });
-  std::future<RenderResult> done = task.get_future();
-  std::thread worker(std::move(task));
-  if (done.wait_for(watchdogLimit()) != std::future_status::ready) {
-    std::fprintf(stderr,
-                 "WATCHDOG: %s did not finish within %lld s (deadlock or lost termination); aborting\n",
-                 label.c_str(), (long long)watchdogLimit().count());
-    std::fflush(stderr);
-    std::abort();
-  }
-  worker.join();
-  return done.get();
 }
 
 std::string describeDifference(const core::Image& a, const core::Image& b) {

@@ -17,45 +17,13 @@
 #include "core/balls.h"
 #include "core/image.h"
 #include "host/machine.h"
+#include "machine_test_support.h"
 #include "host/sequential_renderers.h"
 
 namespace raycube::host {
 namespace {
 
-bool sanitized() {
-  const char* value = std::getenv("RAYCUBE_SANITIZED");
-  return value != nullptr && std::string(value) == "1";
-}
-
-std::chrono::seconds watchdogLimit() {
-  return std::chrono::seconds(sanitized() ? 600 : 120);
-}
-
-RenderSettings settingsFor(int side) {
-  RenderSettings s;
-  s.width = side;
-  s.height = side;
-  s.progress = false;
-  return s;
-}
-
-// renderMachine on a worker thread; std::abort() (after saying why) if it does not finish in time.
-RenderResult renderMachineWatched(const core::Scene& scene, const RenderSettings& settings,
-                                  const MachineSettings& machine, MachineReport& report,
-                                  const std::string& label) {
-  std::packaged_task<RenderResult()> task([&] { return renderMachine(scene, settings, machine, &report); });
-  std::future<RenderResult> done = task.get_future();
-  std::thread worker(std::move(task));
-  if (done.wait_for(watchdogLimit()) != std::future_status::ready) {
-    std::fprintf(stderr,
-                 "WATCHDOG: %s did not finish within %lld s (deadlock or lost termination); aborting\n",
-                 label.c_str(), (long long)watchdogLimit().count());
-    std::fflush(stderr);
-    std::abort();
-  }
-  worker.join();
-  return done.get();
-}
+using namespace testing_support;
 
 struct Totals {
   std::uint64_t spawned = 0, finished = 0, contributions = 0, messages = 0, refused = 0;
