@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <tbb/parallel_for.h>
+
 #include <chrono>
+#include <latch>
 #include <cmath>
 #include <stdexcept>
 #include <thread>
@@ -94,8 +97,8 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
     for (const core::Light& light : scene.lights)
       rearLightObjects.push_back(node::objectsInLightVolume(machine.lightRays, light.position, rearSources, scene, all));
   }
-  std::vector<node::NodeSetup> setups;
-  for (int p = 0; p < regions.processors(); ++p) {
+  std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
+  tbb::parallel_for(0, regions.processors(), [&](int p) {
     const node::SampleRect a = regions.areaOf(p);
     const node::ColumnSlab region{lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0,
                                   core::kInfinity};
@@ -114,8 +117,8 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
       setup.rearLightSources = rearSources;
       setup.rearLightObjects = rearLightObjects;
     }
-    setups.push_back(std::move(setup));
-  }
+    setups[std::size_t(p)] = std::move(setup);
+  });
   return setups;
 }
 
@@ -139,17 +142,31 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
   const node::MachineContext context{scene, view, shading, lines, regions, boxes};
   SharedMemoryMachine interconnect(regions, machine.queueCapacity);
+  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, regions, lines, boxes, machine);
   std::vector<std::unique_ptr<JitterTransport>> jitters;
-  std::vector<std::unique_ptr<node::LogicalProcessor>> processors;
-  for (node::NodeSetup& setup : pruneDatabase(scene, view, regions, lines, boxes, machine)) {
-    const int id = setup.id;
-    node::Transport* transport = &interconnect.endpoint(id);
+  std::vector<node::Transport*> transports;
+  for (int id = 0; id < regions.processors(); ++id) {
+    transports.push_back(&interconnect.endpoint(id));
     if (machine.jitterSeed > 0) {
-      jitters.push_back(std::make_unique<JitterTransport>(*transport, machine.jitterSeed * 7919u + unsigned(id)));
-      transport = jitters.back().get();
+      jitters.push_back(std::make_unique<JitterTransport>(*transports.back(), machine.jitterSeed * 7919u + unsigned(id)));
+      transports.back() = jitters.back().get();
     }
-    processors.push_back(std::make_unique<node::LogicalProcessor>(context, std::move(setup), *transport));
   }
+  // 3.2 steps 2-3: every processor subdivides its own region into cells, in its own thread; when all have
+  // done so the host lets the synthesis phase begin.
+  std::vector<std::unique_ptr<node::LogicalProcessor>> processors(setups.size());
+  std::latch subdivided(std::ptrdiff_t(setups.size()));
+  std::latch synthesis(1);
+  std::vector<std::thread> threads;
+  for (std::size_t id = 0; id < setups.size(); ++id) {
+    threads.emplace_back([&, id] {
+      processors[id] = std::make_unique<node::LogicalProcessor>(context, std::move(setups[id]), *transports[id]);
+      subdivided.count_down();
+      synthesis.wait();
+      processors[id]->run();
+    });
+  }
+  subdivided.wait();
   RenderResult result;
   result.mode = "machine";
   result.workers = regions.processors();
@@ -160,8 +177,7 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   std::uint64_t accumulated = 0;
   {
     Progress progress("machine", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
-    std::vector<std::thread> threads;
-    for (auto& p : processors) threads.emplace_back([&p] { p->run(); });
+    synthesis.count_down();
     // The host thread (3.5.1): accumulate contributions until the ring has proved termination.
     ContributionChannel& channel = interconnect.hostChannel();
     auto accumulate = [&](const core::Contribution& c) {
