@@ -174,6 +174,29 @@ TEST(MachineTest, LightConesAndPyramidsDeleteLightRayMessagesAndKeepTheImage) {
   }
 }
 
+// Figure 11: a light among the objects. As messages its light rays converge on the processors around it;
+// with light pyramids (which degenerate to "every object" where the light lies among a region's sources)
+// there are none, and the image does not change.
+TEST(MachineTest, LightAmongTheObjectsSendsLightRaysOnlyAsMessages) {
+  const core::Scene scene =
+      core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" / "lamp_among_balls.nff");
+  const RenderSettings settings = settingsFor(sanitized() ? 16 : 48);
+  const RenderResult reference = renderReference(scene, settings);
+  std::uint64_t lightMessages[2] = {};
+  int k = 0;
+  for (node::LightRayMode mode : {node::LightRayMode::Messages, node::LightRayMode::Pyramid}) {
+    MachineReport report;
+    const std::string label = std::string("lamp among balls ") + (k == 0 ? "messages" : "pyramid");
+    const RenderResult result = renderMachineWatched(scene, settings, machineFor({4, 4}, 8, mode), report, label);
+    expectMachineMatchesReference(reference, result, report, label);
+    for (const ProcessorReport& p : report.processors)
+      lightMessages[k] += p.node.messagesByKind[std::size_t(core::RayKind::Shadow)];
+    ++k;
+  }
+  EXPECT_GT(lightMessages[0], 100u);
+  EXPECT_EQ(lightMessages[1], 0u);
+}
+
 // The pyramid fits a region's light volume at least as tightly as the cone (3.7.2), processor by processor.
 TEST(MachineTest, PyramidHoldsNoMoreObjectsThanCone) {
   const core::Scene scene = core::makeBalls(3);
