@@ -1,0 +1,48 @@
+// A scene knows what it uses, so a renderer never pays for a feature it does not need (no refraction or
+// transmittance products without T > 0, no cone or patch code without cones or patches).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/balls.h"
+#include "core/nff_reader.h"
+#include "core/whitted.h"
+
+namespace raycube::core {
+namespace {
+
+Scene shipped(const char* name) {
+  return readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" / name);
+}
+
+TEST(SceneFeatures, BallsUsesSpheresAPolygonAndReflectionOnly) {
+  const SceneFeatures f = makeBalls(2).features();
+  EXPECT_TRUE(f.spheres);
+  EXPECT_TRUE(f.polygons);
+  EXPECT_TRUE(f.reflection);
+  EXPECT_FALSE(f.transmission);
+  EXPECT_FALSE(f.cones);
+  EXPECT_FALSE(f.patches);
+  EXPECT_EQ(f.lightCount, 3u);
+}
+
+TEST(SceneFeatures, EachShippedSceneReportsWhatItUses) {
+  EXPECT_TRUE(shipped("gears1.nff").features().transmission);
+  EXPECT_TRUE(shipped("tree1.nff").features().cones);
+  EXPECT_TRUE(shipped("teapot2.nff").features().patches);
+  EXPECT_FALSE(shipped("teapot2.nff").features().transmission);
+  const SceneFeatures jacks = shipped("jacks1.nff").features();
+  EXPECT_TRUE(jacks.cones && jacks.spheres);
+  EXPECT_FALSE(jacks.polygons || jacks.patches || jacks.transmission);
+  EXPECT_EQ(shipped("tree1.nff").features().lightCount, 7u);
+}
+
+// Shadow rays multiply transmittances only in scenes that have some; elsewhere any blocker answers.
+TEST(SceneFeatures, ShadingKnowsWhetherLightRaysMustMultiplyTransmittances) {
+  const Scene balls = makeBalls(1), gears = shipped("gears1.nff");
+  EXPECT_FALSE(Whitted(balls, {}).sceneTransmits());
+  EXPECT_TRUE(Whitted(gears, {}).sceneTransmits());
+}
+
+}  // namespace
+}  // namespace raycube::core
