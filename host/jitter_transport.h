@@ -14,10 +14,10 @@ class JitterTransport final : public node::Transport {
  public:
   JitterTransport(node::Transport& inner, unsigned seed) : inner_(inner), random_(seed) {}
 
-  bool hasNeighbour(node::Face face) const override { return inner_.hasNeighbour(face); }
-  std::size_t trySend(node::Face face, std::span<const node::RayMessage> messages) override {
+  std::size_t trySend(int neighbour, std::span<const node::RayMessage> messages) override {
     jitter();
-    const std::size_t sent = inner_.trySend(face, messages.subspan(0, std::min<std::size_t>(messages.size(), 1 + random_() % 4)));
+    const std::size_t sent =
+        inner_.trySend(neighbour, messages.subspan(0, std::min<std::size_t>(messages.size(), 1 + random_() % 4)));
     jitter();
     return sent;
   }
@@ -26,7 +26,7 @@ class JitterTransport final : public node::Transport {
     return inner_.receive(into.subspan(0, std::min<std::size_t>(into.size(), 1 + random_() % 4)));
   }
   bool anyIncoming() const override { return inner_.anyIncoming(); }
-  bool canSend(node::Face face) const override { return inner_.canSend(face); }
+  bool canSend(int neighbour) const override { return inner_.canSend(neighbour); }
   void sendContribution(const core::Contribution& c) override { inner_.sendContribution(c); }
   void flushContributions() override {
     jitter();

@@ -136,8 +136,8 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
   const core::Whitted shading(scene, settings.shading);
   const node::ScreenLines lines(view);
-  const node::RegionMap regions(evenCuts(view.samplesX(), machine.columns), evenCuts(view.samplesY(), machine.rows),
-                                lines);
+  const node::RegionMap regions = node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns),
+                                                       evenCuts(view.samplesY(), machine.rows), lines);
   std::vector<node::EyeBox> boxes;
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
   const node::MachineContext context{scene, view, shading, lines, regions, boxes};

@@ -1,5 +1,7 @@
 #include "host/shared_memory_transport.h"
 
+#include <algorithm>
+
 #include "queues/wait.h"
 
 namespace raycube::host {
@@ -16,31 +18,24 @@ std::vector<queues::Doorbell*> rawBells(const std::vector<std::unique_ptr<queues
 class SharedMemoryMachine::Endpoint final : public node::Transport {
  public:
   Endpoint(SharedMemoryMachine& machine, int id) : machine_(machine), id_(id), sender_(machine.channel_.sender(id)) {
-    for (int f = 0; f < node::kFaces; ++f) {
-      outgoing_[f] = machine.queues_[std::size_t(id) * node::kFaces + f].get();
-      const int n = machine.regions_.neighbour(id, node::Face(f));
-      incoming_[f] = n < 0 ? nullptr
-                           : machine.queues_[std::size_t(n) * node::kFaces + int(node::opposite(node::Face(f)))].get();
-    }
+    for (int n : machine.regions_.neighbours(id)) incoming_.push_back(machine.queue(n, id));
   }
 
-  bool hasNeighbour(node::Face face) const override { return outgoing_[int(face)] != nullptr; }
-  std::size_t trySend(node::Face face, std::span<const node::RayMessage> messages) override {
-    return outgoing_[int(face)]->tryPushN(messages);
+  std::size_t trySend(int neighbour, std::span<const node::RayMessage> messages) override {
+    return machine_.queue(id_, neighbour)->tryPushN(messages);
   }
-  bool canSend(node::Face face) const override { return outgoing_[int(face)]->hasSpace(); }
+  bool canSend(int neighbour) const override { return machine_.queue(id_, neighbour)->hasSpace(); }
   std::size_t receive(std::span<node::RayMessage> into) override {
     std::size_t n = 0;
-    for (int k = 0; k < node::kFaces && n < into.size(); ++k) {
-      RayQueue* q = incoming_[(next_ + k) % node::kFaces];
-      if (q != nullptr) n += q->tryPopN(into.subspan(n));
-    }
-    next_ = (next_ + 1) % node::kFaces;  // fairness between faces
+    const std::size_t count = incoming_.size();
+    for (std::size_t k = 0; k < count && n < into.size(); ++k)
+      n += incoming_[(next_ + k) % count]->tryPopN(into.subspan(n));
+    if (count > 0) next_ = (next_ + 1) % count;  // fairness between neighbours
     return n;
   }
   bool anyIncoming() const override {
     for (RayQueue* q : incoming_)
-      if (q != nullptr && q->hasMessage()) return true;
+      if (q->hasMessage()) return true;
     return false;
   }
 
@@ -74,9 +69,8 @@ class SharedMemoryMachine::Endpoint final : public node::Transport {
   SharedMemoryMachine& machine_;
   int id_;
   ContributionChannel::Sender sender_;
-  RayQueue* outgoing_[node::kFaces] = {};
-  RayQueue* incoming_[node::kFaces] = {};
-  int next_ = 0;
+  std::vector<RayQueue*> incoming_;
+  std::size_t next_ = 0;
 };
 
 SharedMemoryMachine::SharedMemoryMachine(const node::RegionMap& regions, std::size_t queueCapacity)
@@ -88,15 +82,12 @@ SharedMemoryMachine::SharedMemoryMachine(const node::RegionMap& regions, std::si
       }()),
       channel_(std::size_t(regions.processors()), kContributionBlocksPerProcessor, rawBells(bells_)) {
   const int processors = regions.processors();
-  queues_.resize(std::size_t(processors) * node::kFaces);
+  outgoing_.resize(std::size_t(processors));
   for (int p = 0; p < processors; ++p) {
     mailboxes_.push_back(std::make_unique<Mailbox>());
-    for (int f = 0; f < node::kFaces; ++f) {
-      const int n = regions.neighbour(p, node::Face(f));
-      if (n < 0) continue;
-      queues_[std::size_t(p) * node::kFaces + f] = std::make_unique<RayQueue>(queues::SpscOptions{
-          .capacity = queueCapacity, .consumerBell = bells_[n].get(), .producerBell = bells_[p].get()});
-    }
+    for (int n : regions.neighbours(p))
+      outgoing_[p].push_back(std::make_unique<RayQueue>(queues::SpscOptions{
+          .capacity = queueCapacity, .consumerBell = bells_[n].get(), .producerBell = bells_[p].get()}));
   }
   for (int p = 0; p < processors; ++p) endpoints_.push_back(std::make_unique<Endpoint>(*this, p));
 }
@@ -105,9 +96,17 @@ SharedMemoryMachine::~SharedMemoryMachine() = default;
 
 node::Transport& SharedMemoryMachine::endpoint(int processor) { return *endpoints_[processor]; }
 
+RayQueue* SharedMemoryMachine::queue(int from, int to) const {
+  const std::vector<int>& n = regions_.neighbours(from);
+  const auto k = std::size_t(std::lower_bound(n.begin(), n.end(), to) - n.begin());
+  return outgoing_[from][k].get();
+}
+
 queues::QueueStats SharedMemoryMachine::outgoingStats(int processor, node::Face face) const {
-  const auto& q = queues_[std::size_t(processor) * node::kFaces + int(face)];
-  return q ? q->stats() : queues::QueueStats{};
+  queues::QueueStats sum;
+  for (int n : regions_.neighbours(processor))
+    if (regions_.faceToward(processor, n) == face) sum += queue(processor, n)->stats();
+  return sum;
 }
 
 }  // namespace raycube::host

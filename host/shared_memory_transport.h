@@ -1,5 +1,5 @@
 #pragma once
-// The machine's interconnect in one address space: a bounded lock-free FIFO per directed face (capacity
+// The machine's interconnect in one address space: a bounded lock-free FIFO per directed adjacency (capacity
 // --queue-capacity, 128 as on the iPSC), a doorbell per processor, a token mailbox per processor on the
 // ring, and a block channel per processor to the host.
 #include <atomic>
@@ -24,13 +24,12 @@ class SharedMemoryMachine {
   SharedMemoryMachine(const node::RegionMap& regions, std::size_t queueCapacity);
   SharedMemoryMachine(const SharedMemoryMachine&) = delete;
   SharedMemoryMachine& operator=(const SharedMemoryMachine&) = delete;
-
-  SharedMemoryMachine(SharedMemoryMachine&&) = delete;
   ~SharedMemoryMachine();
+
   node::Transport& endpoint(int processor);
   ContributionChannel& hostChannel() { return channel_; }
   bool terminated() const { return terminated_.load(std::memory_order_acquire); }
-  // Saturation of the FIFOs a processor sends into, one per face (absent faces stay zero).
+  // Saturation of the FIFOs a processor sends into, summed per face of the processor.
   queues::QueueStats outgoingStats(int processor, node::Face face) const;
 
  private:
@@ -39,11 +38,12 @@ class SharedMemoryMachine {
     std::atomic<bool> full{false};
     node::Token token;
   };
+  RayQueue* queue(int from, int to) const;
 
   const node::RegionMap& regions_;
   std::vector<std::unique_ptr<queues::Doorbell>> bells_;
-  // queues_[p * kFaces + f]: from processor p through its face f to the neighbour there
-  std::vector<std::unique_ptr<RayQueue>> queues_;
+  // outgoing_[p][k]: from processor p to its k-th neighbour
+  std::vector<std::vector<std::unique_ptr<RayQueue>>> outgoing_;
   std::vector<std::unique_ptr<Mailbox>> mailboxes_;
   ContributionChannel channel_;
   std::atomic<bool> terminated_{false};

@@ -1,5 +1,6 @@
 #include "node/logical_processor.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/transmission.h"
@@ -22,6 +23,8 @@ LogicalProcessor::LogicalProcessor(const MachineContext& context, NodeSetup setu
       setup_(std::move(setup)),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
+      neighbours_(context.regions.neighbours(setup_.id)),
+      overflow_(neighbours_.size()),
       cells_(area_, context.lines, setup_.cellLevel, setup_.objects, context.eyeBoxes),
       inbox_(kInboxBatch),
       mailboxStamp_(context.scene.objects.size(), 0),
@@ -167,11 +170,9 @@ void LogicalProcessor::evaluate(RayMessage m, bool primary) {
       t = tEnd;  // on to the rear part
       continue;
     }
-    const int r = context_.regions.rowOf(setup_.id) + exit.qStep;
-    const int c = context_.regions.columnOf(setup_.id) + exit.sStep;
     m.tEnter = exit.t;
     m.attenuation = attenuation;
-    m.destination = std::uint16_t(context_.regions.idOf(r, c));
+    m.destination = std::uint16_t(context_.regions.ownerBeyond(setup_.id, er, exit.t, exit.sStep, exit.qStep));
     return send(m);
   }
 }
@@ -233,11 +234,11 @@ void LogicalProcessor::deliver(const core::RayOutcome& outcome) {
 // Communication task: never block on a full FIFO (the paper's deadlock, 2.2): keep the ray in a local
 // overflow list, in order, and go on consuming incoming rays, so a cycle of full queues always drains.
 void LogicalProcessor::send(RayMessage m) {
-  const Face face = context_.regions.nextHop(setup_.id, m.destination);
-  m.face = std::uint8_t(opposite(face));
-  OverflowList<RayMessage>& pending = overflow_[std::size_t(face)];
-  if (pending.empty() && transport_.trySend(face, std::span<const RayMessage>(&m, 1)) == 1) {
-    countSent(face, m);
+  const int hop = context_.regions.nextHop(setup_.id, m.destination);
+  m.face = std::uint8_t(opposite(context_.regions.faceToward(setup_.id, hop)));
+  OverflowList<RayMessage>& pending = overflow_[slotOf(hop)];
+  if (pending.empty() && transport_.trySend(hop, std::span<const RayMessage>(&m, 1)) == 1) {
+    countSent(hop, m);
     return;
   }
   ++stats_.refusedPushes;
@@ -245,20 +246,24 @@ void LogicalProcessor::send(RayMessage m) {
   stats_.overflowHighWater = std::max<std::uint64_t>(stats_.overflowHighWater, pending.size());
 }
 
-void LogicalProcessor::countSent(Face face, const RayMessage& m) {
+std::size_t LogicalProcessor::slotOf(int neighbour) const {
+  return std::size_t(std::lower_bound(neighbours_.begin(), neighbours_.end(), neighbour) - neighbours_.begin());
+}
+
+void LogicalProcessor::countSent(int neighbour, const RayMessage& m) {
   ++messageBalance_;  // EWD 998: counted when the ray enters the neighbour's FIFO
-  ++stats_.sent[std::size_t(face)];
+  ++stats_.sent[std::size_t(context_.regions.faceToward(setup_.id, neighbour))];
   ++stats_.messagesByKind[std::size_t(m.ray.kind)];
 }
 
 bool LogicalProcessor::flushOverflow() {
   bool moved = false;
-  for (int f = 0; f < kFaces; ++f) {
-    OverflowList<RayMessage>& pending = overflow_[f];
+  for (std::size_t slot = 0; slot < overflow_.size(); ++slot) {
+    OverflowList<RayMessage>& pending = overflow_[slot];
     if (pending.empty()) continue;
     const std::span<const RayMessage> waiting = pending.all();
-    const std::size_t n = transport_.trySend(Face(f), waiting);
-    for (std::size_t k = 0; k < n; ++k) countSent(Face(f), waiting[k]);
+    const std::size_t n = transport_.trySend(neighbours_[slot], waiting);
+    for (std::size_t k = 0; k < n; ++k) countSent(neighbours_[slot], waiting[k]);
     pending.pop_front(n);
     moved |= n > 0;
   }
@@ -328,8 +333,8 @@ void LogicalProcessor::onIdle() {
   const bool blocked = backlog() > 0;
   transport_.waitUntil([&] {
     if (transport_.terminated() || transport_.anyIncoming()) return true;
-    for (int f = 0; f < kFaces; ++f)
-      if (!overflow_[f].empty() && transport_.canSend(Face(f))) return true;
+    for (std::size_t slot = 0; slot < overflow_.size(); ++slot)
+      if (!overflow_[slot].empty() && transport_.canSend(neighbours_[slot])) return true;
     return !holdingToken_ && transport_.hasToken();
   });
   (blocked ? stats_.blockedSeconds : stats_.idleSeconds) += secondsSince(start);

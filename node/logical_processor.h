@@ -89,7 +89,8 @@ class LogicalProcessor {
   void deliver(const core::RayOutcome& outcome);
   // Communication task
   void send(RayMessage message);
-  void countSent(Face face, const RayMessage& message);
+  void countSent(int neighbour, const RayMessage& message);
+  std::size_t slotOf(int neighbour) const;
   bool flushOverflow();
   void onReceived(const RayMessage& message);
   void onIdle();
@@ -106,7 +107,8 @@ class LogicalProcessor {
   long long nextPrimary_ = 0;
   std::atomic<long long> primariesShot_{0};
   std::vector<RayMessage> local_;                  // rays spawned here, still to evaluate here
-  std::array<OverflowList<RayMessage>, kFaces> overflow_;  // rays refused by a full neighbour FIFO
+  const std::vector<int>& neighbours_;               // processors across this region's faces
+  std::vector<OverflowList<RayMessage>> overflow_;   // per neighbour: rays its full FIFO refused
   std::vector<RayMessage> inbox_;
   core::RayOutcome outcome_;
   // Mailboxes: an object met again in a later cell of the same ray is not tested again. The cached t is

@@ -1,8 +1,10 @@
 #pragma once
-// Which processor owns which pixel area (Priol & Bouatouch 3.1): an R x C grid of sample rectangles with
-// nearly equal sample counts, processors numbered row by row. A node uses it to name the owner of a point
-// and the neighbour behind a face; it knows nothing of how the host chose the areas.
-#include <algorithm>
+// Which processor owns which pixel area (Priol & Bouatouch 3.1, 3.7.1): rectangles of samples that tile the
+// screen — an R x C grid, or the leaves of a binary space partition — with their adjacency graph (figure 10:
+// after a BSP a region can border several others on one face). A node uses it to name the owner of a point,
+// the neighbour a ray enters and the next hop towards a processor that is not a neighbour; it knows
+// nothing of how the host chose the areas.
+#include <cstdint>
 #include <vector>
 
 #include "node/eye_frame_ray.h"
@@ -13,57 +15,40 @@ namespace raycube::node {
 
 class RegionMap {
  public:
-  RegionMap(std::vector<int> columnStarts, std::vector<int> rowStarts, const ScreenLines& lines)
-      : columnStarts_(std::move(columnStarts)), rowStarts_(std::move(rowStarts)) {
-    for (int k : columnStarts_) sBounds_.push_back(lines.at(0, k));
-    for (int k : rowStarts_) qBounds_.push_back(lines.at(1, k));
-  }
+  // Areas must tile [0, samplesX) x [0, samplesY) of `lines` without overlap. gridColumns > 0 says they
+  // form a uniform grid of that many columns (routed along rows then columns, no routing table).
+  RegionMap(std::vector<SampleRect> areas, const ScreenLines& lines, int gridColumns = 0);
+  // The uniform R x C grid of 3.1, processors numbered row by row.
+  static RegionMap grid(const std::vector<int>& columnStarts, const std::vector<int>& rowStarts,
+                        const ScreenLines& lines);
 
-  int columns() const { return int(columnStarts_.size()) - 1; }
-  int rows() const { return int(rowStarts_.size()) - 1; }
-  int processors() const { return columns() * rows(); }
-  int idOf(int row, int column) const { return row * columns() + column; }
-  int rowOf(int id) const { return id / columns(); }
-  int columnOf(int id) const { return id % columns(); }
-  SampleRect areaOf(int id) const {
-    return SampleRect{columnStarts_[columnOf(id)], columnStarts_[columnOf(id) + 1], rowStarts_[rowOf(id)],
-                      rowStarts_[rowOf(id) + 1]};
-  }
+  int processors() const { return int(areas_.size()); }
+  const SampleRect& areaOf(int id) const { return areas_[id]; }
+  int ownerOfSample(int sx, int sy) const { return owner_[std::size_t(sy) * samplesX_ + sx]; }
 
   // The processor whose region holds the ray at t (front part only).
-  int ownerAt(const EyeFrameRay& ray, double t) const {
-    return idOf(locate(qBounds_, ray.screenAt(1, t)), locate(sBounds_, ray.screenAt(0, t)));
-  }
-  int ownerOfSample(int sx, int sy) const {
-    const auto col = std::upper_bound(columnStarts_.begin() + 1, columnStarts_.end() - 1, sx) - columnStarts_.begin() - 1;
-    const auto row = std::upper_bound(rowStarts_.begin() + 1, rowStarts_.end() - 1, sy) - rowStarts_.begin() - 1;
-    return idOf(int(row), int(col));
-  }
+  int ownerAt(const EyeFrameRay& ray, double t) const;
+  // The processor a ray enters when it leaves region `id` at t through the faces (sStep, qStep).
+  int ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, int qStep) const;
 
-  // Dimension-order routing on the 2D array: along the row first, then along the column.
-  Face nextHop(int from, int to) const {
-    if (columnOf(to) < columnOf(from)) return Face::Left;
-    if (columnOf(to) > columnOf(from)) return Face::Right;
-    return rowOf(to) < rowOf(from) ? Face::Up : Face::Down;
-  }
-  int neighbour(int id, Face face) const {
-    const int r = rowOf(id), c = columnOf(id);
-    switch (face) {
-      case Face::Left: return c > 0 ? idOf(r, c - 1) : -1;
-      case Face::Right: return c + 1 < columns() ? idOf(r, c + 1) : -1;
-      case Face::Up: return r > 0 ? idOf(r - 1, c) : -1;
-      case Face::Down: return r + 1 < rows() ? idOf(r + 1, c) : -1;
-    }
-    return -1;
-  }
+  // Regions sharing a stretch of boundary with `id`, in increasing order, and which face of `id` they touch.
+  const std::vector<int>& neighbours(int id) const { return neighbours_[id]; }
+  Face faceToward(int id, int neighbour) const;
+  // The neighbour of `from` on a shortest path to `to` in the adjacency graph.
+  int nextHop(int from, int to) const;
+  std::size_t adjacencyEdges() const;  // undirected
 
  private:
-  static int locate(const std::vector<double>& bounds, double value) {
-    return int(std::upper_bound(bounds.begin() + 1, bounds.end() - 1, value) - (bounds.begin() + 1));
-  }
+  int sampleColumn(double s) const;
+  int sampleRow(double q) const;
 
-  std::vector<int> columnStarts_, rowStarts_;
-  std::vector<double> sBounds_, qBounds_;
+  std::vector<SampleRect> areas_;
+  const ScreenLines* lines_;
+  int samplesX_, samplesY_;
+  std::vector<std::uint16_t> owner_;           // per sample
+  std::vector<std::vector<int>> neighbours_;
+  int gridColumns_ = 0;                        // > 0: a uniform grid, routed along rows then columns
+  std::vector<std::uint16_t> nextHop_;         // otherwise: P x P next hops from breadth-first searches
 };
 
 }  // namespace raycube::node

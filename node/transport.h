@@ -1,6 +1,6 @@
 #pragma once
 // The one interface between a node program and the rest of the machine (Priol & Bouatouch 3.5): rays to
-// neighbours through their faces, rays from neighbours, contributions to the host, the termination token.
+// the neighbours across its faces (one FIFO per neighbour, 3.7.1 figure 10), rays from neighbours, contributions to the host, the termination token.
 // The node never sees how these travel; shared-memory FIFOs are one implementation, MPI could be another.
 #include <cstddef>
 #include <cstdint>
@@ -23,14 +23,13 @@ class Transport {
  public:
   virtual ~Transport() = default;
 
-  virtual bool hasNeighbour(Face face) const = 0;
-  // Sends the longest prefix of `messages` the neighbour's FIFO has room for; returns its length. The
-  // caller keeps the rest and tries again later.
-  virtual std::size_t trySend(Face face, std::span<const RayMessage> messages) = 0;
+  // Sends the longest prefix of `messages` the FIFO to that neighbouring processor has room for; returns
+  // its length. The caller keeps the rest and tries again later.
+  virtual std::size_t trySend(int neighbour, std::span<const RayMessage> messages) = 0;
   // Up to into.size() rays from the incoming FIFOs; returns how many.
   virtual std::size_t receive(std::span<RayMessage> into) = 0;
   virtual bool anyIncoming() const = 0;
-  virtual bool canSend(Face face) const = 0;
+  virtual bool canSend(int neighbour) const = 0;
 
   // Contributions are batched and shipped when a block fills or on flush (when the node goes idle).
   virtual void sendContribution(const core::Contribution& contribution) = 0;

@@ -143,17 +143,37 @@ TEST(RegionCells, TheCellOwningAHitHoldsItsObject) {
 
 TEST(RegionMap, OwnersAndRoutesOnTheGrid) {
   Fixture f;
-  const RegionMap map({0, 20, 40, 64}, {0, 16, 48}, f.lines);
+  const RegionMap map = RegionMap::grid({0, 20, 40, 64}, {0, 16, 48}, f.lines);
   EXPECT_EQ(map.processors(), 6);
   EXPECT_EQ(map.ownerOfSample(0, 0), 0);
   EXPECT_EQ(map.ownerOfSample(63, 47), 5);
   EXPECT_EQ(map.ownerOfSample(20, 16), 4);
-  EXPECT_EQ(map.nextHop(0, 5), Face::Right);
-  EXPECT_EQ(map.nextHop(2, 5), Face::Down);
-  EXPECT_EQ(map.neighbour(0, Face::Left), -1);
-  EXPECT_EQ(map.neighbour(4, Face::Up), 1);
+  EXPECT_EQ(map.nextHop(0, 5), 1);  // along the row first
+  EXPECT_EQ(map.nextHop(2, 5), 5);
+  EXPECT_EQ(map.neighbours(0), (std::vector<int>{1, 3}));
+  EXPECT_EQ(map.faceToward(4, 1), Face::Up);
+  EXPECT_EQ(map.faceToward(4, 3), Face::Left);
+  EXPECT_EQ(map.adjacencyEdges(), 7u);
   const core::Ray eye = f.view.eyeRay(30, 30);
   EXPECT_EQ(map.ownerAt(EyeFrameRay::of(eye, f.view), 1.0), map.ownerOfSample(30, 30));
+}
+
+// Figure 10: after a BSP a region borders several others on one face; routes follow the adjacency graph.
+TEST(RegionMap, ArbitraryTilingHasItsAdjacencyGraphAndShortestRoutes) {
+  Fixture f;
+  // 0 | 1        0: left half; 1, 2: right half split in rows; 3: bottom strip under 0 only
+  //   | 2
+  // 3 |
+  const RegionMap map({{0, 32, 0, 30}, {32, 64, 0, 20}, {32, 64, 20, 48}, {0, 32, 30, 48}}, f.lines);
+  EXPECT_EQ(map.neighbours(0), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(map.neighbours(1), (std::vector<int>{0, 2}));
+  EXPECT_EQ(map.neighbours(3), (std::vector<int>{0, 2}));
+  EXPECT_EQ(map.faceToward(0, 1), Face::Right);
+  EXPECT_EQ(map.faceToward(0, 2), Face::Right);
+  EXPECT_EQ(map.nextHop(1, 3) == 0 || map.nextHop(1, 3) == 2, true);
+  EXPECT_EQ(map.nextHop(3, 1) == 0 || map.nextHop(3, 1) == 2, true);
+  EXPECT_THROW(RegionMap({{0, 32, 0, 48}, {30, 64, 0, 48}}, f.lines), std::invalid_argument);  // overlap
+  EXPECT_THROW(RegionMap({{0, 32, 0, 48}}, f.lines), std::invalid_argument);                   // a hole
 }
 
 }  // namespace
