@@ -35,9 +35,14 @@ double shadowTransmission(const Whitted& shading, const Database& database, cons
   return transmission;
 }
 
-template <class Database>
+// Sees every ray of the tree once it is traced: where it ended (hit, light, or infinity) and the work it cost.
+struct IgnoreRays {
+  void operator()(const TracedRay&, double /*tEnd*/, std::uint64_t /*work*/) const {}
+};
+
+template <class Database, class Observer = IgnoreRays>
 void traceRayTree(const Whitted& shading, const Database& database, const TracedRay& eye, Framebuffer& frame,
-                  TraceCounters& counters, RayTreeScratch& scratch) {
+                  TraceCounters& counters, RayTreeScratch& scratch, Observer&& observe = {}) {
   scratch.pending.clear();
   scratch.pending.push_back(eye);
   while (!scratch.pending.empty()) {
@@ -45,15 +50,19 @@ void traceRayTree(const Whitted& shading, const Database& database, const Traced
     scratch.pending.pop_back();
     ++counters.of(ray.kind);
     scratch.outcome.clear();
+    const std::uint64_t workBefore = counters.intersectionTests + counters.boxTests;
+    double tEnd = ray.ray.tMax;
     if (ray.kind == RayKind::Shadow) {
       shading.finishShadow(ray, shadowTransmission(shading, database, ray, counters, scratch), scratch.outcome);
     } else {
       const Hit hit = database.closestHit(ray.ray, counters);
+      tEnd = hit.t;
       if (hit.found())
         shading.shadeHit(ray, hit, scratch.outcome);
       else
         shading.shadeMiss(ray, scratch.outcome);
     }
+    observe(ray, tEnd, counters.intersectionTests + counters.boxTests - workBefore);
     for (const Contribution& c : scratch.outcome.contributions) {
       ++counters.contributions;
       if (!frame.add(c)) ++counters.nonFinite;

@@ -33,6 +33,10 @@ class View {
   double boundaryU(int k) const { return sampleU(k) - 0.5 * pitch_; }
   double boundaryV(int k) const { return sampleV(k) + 0.5 * pitch_; }
 
+  // Inverse of boundaryU / boundaryV: the continuous sample-boundary index of a screen coordinate.
+  double boundaryIndexU(double u) const { return u / pitch_ + offsetPixels_ + 0.5 * width_; }
+  double boundaryIndexV(double v) const { return 0.5 * height_ + offsetPixels_ - v / pitch_; }
+
   Ray eyeRay(int sx, int sy) const;
 
   // The eye frame: x right, y up, z forward (depth).

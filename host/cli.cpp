@@ -30,6 +30,8 @@ const std::map<std::string, RenderMode> kModes{
 const std::map<std::string, node::LightRayMode> kLightRays{{"messages", node::LightRayMode::Messages},
                                                            {"cone", node::LightRayMode::Cone},
                                                            {"pyramid", node::LightRayMode::Pyramid}};
+const std::map<std::string, Balance> kBalances{{"uniform", Balance::Uniform}, {"bsp", Balance::Bsp}};
+const std::map<std::string, LoadMetric> kLoadMetrics{{"rays", LoadMetric::Rays}, {"cost", LoadMetric::Cost}};
 const std::map<std::string, core::Sampling> kSamplings{{"centers", core::Sampling::Centers},
                                                        {"corners", core::Sampling::Corners}};
 
@@ -54,6 +56,8 @@ struct RenderCommand {
   std::string procs = "4x4";
   std::string overlayPath;
   std::string lightRays = "pyramid";
+  std::string balance = "bsp";
+  std::string loadMetric = "cost";
   MachineSettings machine;
 };
 
@@ -80,6 +84,8 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
     case RenderMode::Machine: {
       MachineSettings machine = cmd.machine;
       machine.lightRays = kLightRays.at(cmd.lightRays);
+      machine.balance = kBalances.at(cmd.balance);
+      machine.loadMetric = kLoadMetrics.at(cmd.loadMetric);
       std::tie(machine.rows, machine.columns) = parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
       report.emplace();
       return renderMachine(scene, settings, machine, &*report);
@@ -148,7 +154,8 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       ->check(CLI::Range(0, 1024));
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
       ->transform(CLI::IsMember(keysOf(kSamplings), CLI::ignore_case));
-  render->add_option("--procs", cmd.procs, "Logical processors of the machine as RxC (rows x columns)");
+  render->add_option("--procs", cmd.procs,
+                     "Logical processors as RxC (rows x columns); with --balance bsp only R*C counts");
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
   render->add_option("--cell-level", cmd.machine.cellLevel, "Recursive halvings of each pixel area into super-cells")
@@ -156,6 +163,12 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
   render->add_option("--light-rays", cmd.lightRays,
                      "messages (light rays travel) | cone | pyramid (traced where they start, 3.7.2)")
       ->transform(CLI::IsMember(keysOf(kLightRays), CLI::ignore_case));
+  render->add_option("--balance", cmd.balance, "uniform (R x C grid, 3.1) | bsp (equal estimated loads, 3.7.1)")
+      ->transform(CLI::IsMember(keysOf(kBalances), CLI::ignore_case));
+  render->add_option("--load-metric", cmd.loadMetric, "rays (the paper's) | cost (rays weighted by their work)")
+      ->transform(CLI::IsMember(keysOf(kLoadMetrics), CLI::ignore_case));
+  render->add_option("--subsample", cmd.machine.subsampleWindow, "Load estimate: one sub-sampled pixel per WxW window")
+      ->check(CLI::Range(1, 1024));
   render->add_option("-o,--output", cmd.output, "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
   render->add_option("--overlay", cmd.overlayPath, "Machine: write the image with regions and their load (.png)");

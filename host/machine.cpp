@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "core/framebuffer.h"
+#include "host/bsp_partition.h"
 #include "host/jitter_transport.h"
 #include "host/progress.h"
 #include "host/shared_memory_transport.h"
@@ -134,10 +135,21 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
                                             "column of the {}x{} sample grid",
                                             machine.rows, machine.columns, view.samplesX(), view.samplesY()));
   if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
+  if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
   const core::Whitted shading(scene, settings.shading);
   const node::ScreenLines lines(view);
-  const node::RegionMap regions = node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns),
-                                                       evenCuts(view.samplesY(), machine.rows), lines);
+  // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
+  const LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
+                                       machine.lightRays != node::LightRayMode::Messages);
+  const node::RegionMap regions =
+      machine.balance == Balance::Bsp
+          ? node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
+                                         machine.loadMetric),
+                            lines)
+          : node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns), evenCuts(view.samplesY(), machine.rows),
+                                  lines);
+  std::vector<node::SampleRect> areas;
+  for (int p = 0; p < regions.processors(); ++p) areas.push_back(regions.areaOf(p));
   std::vector<node::EyeBox> boxes;
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
   const node::MachineContext context{scene, view, shading, lines, regions, boxes};
@@ -205,6 +217,8 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   MachineReport local;
   MachineReport& out = report ? *report : local;
   out.settings = machine;
+  out.estimatedLoad = estimateLoads(areas, load, machine.loadMetric);
+  out.subsampledRays = load.raysTraced;
   out.contributionsAccumulated = accumulated;
   for (int p = 0; p < regions.processors(); ++p) {
     ProcessorReport pr;

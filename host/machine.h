@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "host/load_estimate.h"
 #include "host/render_result.h"
 #include "host/render_settings.h"
 #include "node/logical_processor.h"
@@ -13,9 +14,17 @@
 
 namespace raycube::host {
 
+enum class Balance : std::uint8_t {
+  Uniform,  // 3.1: an R x C grid of equal pixel areas
+  Bsp,      // 3.7.1: a BSP of the screen into areas of equal estimated load
+};
+
 struct MachineSettings {
   int rows = 4;
   int columns = 4;
+  Balance balance = Balance::Bsp;        // with Bsp only rows x columns (the processor count) matters
+  int subsampleWindow = 8;               // 3.7.1: one sub-sampled pixel per w x w window
+  LoadMetric loadMetric = LoadMetric::Cost;
   std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
   int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
@@ -29,6 +38,10 @@ struct ProcessorReport {
 
 struct MachineReport {
   MachineSettings settings;
+  // Figure 15: per processor, the load estimated from the sub-sampled rays (scaled to the image), in the
+  // metric used to partition; and how many rays were sub-sampled.
+  std::vector<double> estimatedLoad;
+  std::uint64_t subsampledRays = 0;
   std::vector<ProcessorReport> processors;
   std::size_t messageBytes = sizeof(node::RayMessage);
   std::uint64_t contributionsAccumulated = 0;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace raycube::host {
@@ -15,7 +16,57 @@ std::uint64_t sum(const Array& a) {
   return std::accumulate(a.begin(), a.end(), std::uint64_t(0));
 }
 
+std::uint64_t costOf(const ProcessorReport& p) {
+  return p.node.processed.intersectionTests + p.node.processed.boxTests;
+}
+
+std::vector<double> normalisedToMean(std::vector<double> v) {
+  double mean = 0;
+  for (double x : v) mean += x;
+  mean = v.empty() ? 0 : mean / double(v.size());
+  if (mean > 0)
+    for (double& x : v) x /= mean;
+  return v;
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = double(a.size());
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ma += a[i] / n;
+    mb += b[i] / n;
+  }
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
 }  // namespace
+
+LoadBalance loadBalanceOf(const MachineReport& report) {
+  LoadBalance b;
+  std::vector<double> rays, cost;
+  for (const ProcessorReport& p : report.processors) {
+    rays.push_back(double(loadOf(p)));
+    cost.push_back(double(costOf(p)));
+  }
+  b.actualRays = normalisedToMean(rays);
+  b.actualCost = normalisedToMean(cost);
+  b.estimated = normalisedToMean(report.estimatedLoad);
+  if (!b.actualRays.empty()) {
+    b.raysMaxOverMean = *std::max_element(b.actualRays.begin(), b.actualRays.end());
+    b.raysMinOverMean = *std::min_element(b.actualRays.begin(), b.actualRays.end());
+    b.costMaxOverMean = *std::max_element(b.actualCost.begin(), b.actualCost.end());
+    b.costMinOverMean = *std::min_element(b.actualCost.begin(), b.actualCost.end());
+  }
+  if (b.estimated.size() == b.actualRays.size() && b.estimated.size() > 1)
+    b.pearsonRays = correlation(b.estimated, b.actualRays);
+  return b;
+}
 
 std::string machineTable(const MachineReport& report) {
   std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0;
@@ -33,14 +84,24 @@ std::string machineTable(const MachineReport& report) {
       "forwarded {}; refused pushes {}\n",
       report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes, byKind[0],
       byKind[1], byKind[2], byKind[3], forwarded, refused);
-  text += fmt::format("  termination: {} token rounds, {} token passes; load max/mean {:.2f}\n", report.probes,
-                      report.tokenPasses, mean > 0 ? maxLoad / mean : 0.0);
-  text += "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  idle s  blocked s\n";
-  for (const ProcessorReport& p : report.processors) {
-    const node::NodeStats& n = p.node;
-    text += fmt::format("  {:>4} {:>7} {:>7} {:>6} {:>10} {:>8} {:>9} {:>9} {:>4} {:>8} {:>7.3f} {:>9.3f}\n", n.id,
+  const LoadBalance balance = loadBalanceOf(report);
+  text += fmt::format("  termination: {} token rounds, {} token passes\n", report.probes, report.tokenPasses);
+  text += fmt::format(
+      "  load ({}, {} metric, sub-sampling {}x{}): rays processed max/mean {:.2f} min/mean {:.2f}; cost max/mean "
+      "{:.2f} min/mean {:.2f}; estimate vs rays Pearson r {:.3f}\n",
+      report.settings.balance == Balance::Bsp ? "bsp" : "uniform",
+      report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays", report.settings.subsampleWindow,
+      report.settings.subsampleWindow, balance.raysMaxOverMean, balance.raysMinOverMean, balance.costMaxOverMean,
+      balance.costMinOverMean, balance.pearsonRays);
+  (void)mean;
+  (void)maxLoad;
+  text += "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  est/mean  rays/mean\n";
+  for (std::size_t i = 0; i < report.processors.size(); ++i) {
+    const node::NodeStats& n = report.processors[i].node;
+    text += fmt::format("  {:>4} {:>7} {:>7} {:>6} {:>10} {:>8} {:>9} {:>9} {:>4} {:>8} {:>9.2f} {:>10.2f}\n", n.id,
                         n.area.count(), n.objects, n.cells, n.processed.totalRays(), n.processed.intersectionTests,
-                        sum(n.sent), sum(n.received), n.forwarded, n.refusedPushes, n.idleSeconds, n.blockedSeconds);
+                        sum(n.sent), sum(n.received), n.forwarded, n.refusedPushes,
+                        i < balance.estimated.size() ? balance.estimated[i] : 0.0, balance.actualRays[i]);
   }
   return text;
 }
@@ -90,7 +151,20 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"blockedSeconds", n.blockedSeconds},
                           {"tokenVisits", n.tokenVisits}});
   }
+  const LoadBalance balance = loadBalanceOf(report);
   return {{"rows", report.settings.rows},
+          {"balance", report.settings.balance == Balance::Bsp ? "bsp" : "uniform"},
+          {"loadMetric", report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays"},
+          {"subsampleWindow", report.settings.subsampleWindow},
+          {"subsampledRays", report.subsampledRays},
+          {"figure15", {{"estimatedOverMean", balance.estimated},
+                        {"raysProcessedOverMean", balance.actualRays},
+                        {"costOverMean", balance.actualCost},
+                        {"pearsonEstimateVsRays", balance.pearsonRays},
+                        {"raysMaxOverMean", balance.raysMaxOverMean},
+                        {"raysMinOverMean", balance.raysMinOverMean},
+                        {"costMaxOverMean", balance.costMaxOverMean},
+                        {"costMinOverMean", balance.costMinOverMean}}},
           {"columns", report.settings.columns},
           {"queueCapacity", report.settings.queueCapacity},
           {"cellLevel", report.settings.cellLevel},

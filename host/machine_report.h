@@ -10,6 +10,15 @@
 
 namespace raycube::host {
 
+// Figure 15 and the balance it achieves: per processor the estimated and the actual load (rays processed,
+// and their cost: intersection tests + cell steps), each normalised to its mean.
+struct LoadBalance {
+  std::vector<double> estimated, actualRays, actualCost;  // normalised to mean 1
+  double raysMaxOverMean = 0, raysMinOverMean = 0, costMaxOverMean = 0, costMinOverMean = 0;
+  double pearsonRays = 0;  // correlation of the estimate with the actual rays processed
+};
+LoadBalance loadBalanceOf(const MachineReport& report);
+
 std::string machineTable(const MachineReport& report);
 nlohmann::json machineJson(const MachineReport& report);
 // Region borders in white; each region darkened in proportion to (1 - its load / the largest load), and a

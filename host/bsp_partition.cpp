@@ -1,0 +1,97 @@
+#include "host/bsp_partition.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace raycube::host {
+namespace {
+
+struct Splitter {
+  LoadMetric metric;
+  std::vector<node::SampleRect> leaves;
+
+  // Load on each side of the line `axis` = k, for pieces already inside the rectangle.
+  void sides(const std::vector<ScreenSegment>& pieces, int axis, double k, double& below, double& above) const {
+    below = above = 0;
+    for (const ScreenSegment& s : pieces) {
+      const double a = axis == 0 ? s.x0 : s.y0, b = axis == 0 ? s.x1 : s.y1;
+      const double lo = std::min(a, b), hi = std::max(a, b);
+      if (metric == LoadMetric::Rays) {
+        below += lo < k ? s.weight : 0;
+        above += hi >= k ? s.weight : 0;
+      } else if (hi <= lo) {
+        (lo < k ? below : above) += s.weight;
+      } else {
+        const double f = std::clamp((k - lo) / (hi - lo), 0.0, 1.0);
+        below += s.weight * f;
+        above += s.weight * (1 - f);
+      }
+    }
+  }
+
+  void split(const node::SampleRect& r, int processors, const std::vector<ScreenSegment>& pieces) {
+    if (processors == 1) {
+      leaves.push_back(r);
+      return;
+    }
+    // Cut across the longer side, unless the shorter one is the only one that can hold both halves.
+    int axis = r.width() >= r.height() ? 0 : 1;
+    auto fits = [&](int ax) {
+      const int length = ax == 0 ? r.width() : r.height(), across = ax == 0 ? r.height() : r.width();
+      return length >= 2 && (long long)length * across >= processors;
+    };
+    if (!fits(axis)) axis = 1 - axis;
+    const int lo = axis == 0 ? r.x0 : r.y0, hi = axis == 0 ? r.x1 : r.y1;
+    const long long across = axis == 0 ? r.height() : r.width();
+    int best = -1, p1 = 0;
+    double bestImbalance = std::numeric_limits<double>::infinity();
+    for (int k = lo + 1; k < hi; ++k) {
+      // Processors each side can take: at least one sample each. Prefer halving the count (ratio
+      // floor(P/2) : ceil(P/2)); shift it only when the cut leaves one side too few samples.
+      const long long most = std::min<long long>(processors - 1, (k - lo) * across);
+      const long long least = std::max<long long>(1, processors - (hi - k) * across);
+      if (least > most) continue;
+      const int first = int(std::clamp<long long>(processors / 2, least, most)), second = processors - first;
+      double below, above;
+      sides(pieces, axis, k, below, above);
+      // Equal load per processor on both sides; with no load at all, equal area per processor.
+      const double imbalance = (below + above > 0) ? std::abs(below * second - above * first)
+                                                    : std::abs(double(k - lo) * second - double(hi - k) * first);
+      if (imbalance < bestImbalance) {
+        bestImbalance = imbalance;
+        best = k;
+        p1 = first;
+      }
+    }
+    if (best < 0) throw std::invalid_argument("BSP: an area is too small for its processors");
+    const int p2 = processors - p1;
+    node::SampleRect first = r, second = r;
+    (axis == 0 ? first.x1 : first.y1) = best;
+    (axis == 0 ? second.x0 : second.y0) = best;
+    split(first, p1, clipAll(pieces, first));
+    split(second, p2, clipAll(pieces, second));
+  }
+
+  std::vector<ScreenSegment> clipAll(const std::vector<ScreenSegment>& pieces, const node::SampleRect& r) const {
+    std::vector<ScreenSegment> kept;
+    ScreenSegment piece;
+    for (const ScreenSegment& s : pieces)
+      if (clipSegment(s, r.x0, r.y0, r.x1, r.y1, metric, piece)) kept.push_back(piece);
+    return kept;
+  }
+};
+
+}  // namespace
+
+std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors, const LoadSample& sample,
+                                           LoadMetric metric) {
+  if (processors < 1 || (long long)samplesX * samplesY < processors)
+    throw std::invalid_argument("BSP: more processors than samples");
+  Splitter splitter{metric, {}};
+  const node::SampleRect screen{0, samplesX, 0, samplesY};
+  splitter.split(screen, processors, splitter.clipAll(sample.segments, screen));
+  return splitter.leaves;
+}
+
+}  // namespace raycube::host

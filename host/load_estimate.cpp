@@ -1,0 +1,116 @@
+#include "host/load_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/bvh.h"
+#include "core/ray_tree.h"
+
+namespace raycube::host {
+namespace {
+
+// Projects the part of a ray in front of the eye (z >= zNear) between t0 and t1 (t1 may be infinite).
+bool projectSegment(const core::View& view, const core::Ray& ray, double t1, double zNear, ScreenSegment& out) {
+  core::Vec3 o = view.toEye(ray.origin), d = view.directionToEye(ray.direction);
+  double t0 = ray.tMin;
+  // Keep z(t) = o.z + t d.z >= zNear.
+  if (d.z == 0) {
+    if (o.z < zNear) return false;
+  } else {
+    const double tz = (zNear - o.z) / d.z;
+    if (d.z > 0) t0 = std::max(t0, tz); else t1 = std::min(t1, tz);
+  }
+  if (t0 > t1 || (t0 == t1 && t1 != ray.tMin)) return false;  // t0 == t1 == tMin: the ray's origin only
+  auto screen = [&](double t, double& x, double& y) {
+    double u, v;
+    if (std::isinf(t)) {  // the vanishing point of the direction (d.z > 0 here)
+      u = d.x / d.z;
+      v = d.y / d.z;
+    } else {
+      const core::Vec3 p = o + t * d;
+      u = p.x / p.z;
+      v = p.y / p.z;
+    }
+    x = view.boundaryIndexU(u);
+    y = view.boundaryIndexV(v);
+  };
+  screen(t0, out.x0, out.y0);
+  screen(t1, out.x1, out.y1);
+  // Regions at the edges extend to infinity: what projects beyond the screen lands on its border.
+  const double w = view.samplesX(), h = view.samplesY();
+  out.x0 = std::clamp(out.x0, 0.0, w);
+  out.x1 = std::clamp(out.x1, 0.0, w);
+  out.y0 = std::clamp(out.y0, 0.0, h);
+  out.y1 = std::clamp(out.y1, 0.0, h);
+  return std::isfinite(out.x0 + out.x1 + out.y0 + out.y1);
+}
+
+}  // namespace
+
+LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading, int window,
+                         LoadMetric metric, bool lightRaysWhereTheyStart) {
+  LoadSample sample;
+  sample.raysPerSegment = double(window) * window;
+  const core::Bvh database(scene, shading);
+  core::Framebuffer scratchFrame(view.samplesX(), view.samplesY());
+  core::TraceCounters counters;
+  core::RayTreeScratch scratch;
+  const double zNear = std::max(view.hither(), 1e-9 * (1 + glm::length(view.eye())));
+  auto record = [&](const core::TracedRay& ray, double tEnd, std::uint64_t work) {
+    ++sample.raysTraced;
+    ScreenSegment s;
+    const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Shadow;
+    if (!projectSegment(view, ray.ray, point ? ray.ray.tMin : tEnd, zNear, s)) return;
+    s.weight = metric == LoadMetric::Rays ? 1.0 : double(1 + work);
+    sample.segments.push_back(s);
+  };
+  // One sample per window, at its centre (3.7.1: "choosing one pixel in each window").
+  for (int wy = 0; wy * window < view.samplesY(); ++wy)
+    for (int wx = 0; wx * window < view.samplesX(); ++wx) {
+      const int sx = std::min(view.samplesX() - 1, wx * window + window / 2);
+      const int sy = std::min(view.samplesY() - 1, wy * window + window / 2);
+      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), scratchFrame, counters, scratch, record);
+    }
+  return sample;
+}
+
+bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, double y1, LoadMetric metric,
+                 ScreenSegment& out) {
+  const double dx = in.x1 - in.x0, dy = in.y1 - in.y0;
+  double a = 0, b = 1;
+  auto edge = [&](double p, double q) {  // keep where p * t <= q
+    if (p == 0) return q >= 0;
+    const double r = q / p;
+    if (p < 0) a = std::max(a, r); else b = std::min(b, r);
+    return a <= b;
+  };
+  if (!(edge(-dx, in.x0 - x0) && edge(dx, x1 - in.x0) && edge(-dy, in.y0 - y0) && edge(dy, y1 - in.y0)))
+    return false;
+  out = ScreenSegment{in.x0 + a * dx, in.y0 + a * dy, in.x0 + b * dx, in.y0 + b * dy, in.weight};
+  if (metric == LoadMetric::Cost && (dx != 0 || dy != 0)) out.weight = in.weight * (b - a);
+  return true;
+}
+
+std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
+                                  LoadMetric metric) {
+  std::vector<double> loads(areas.size(), 0.0);
+  int width = 0, height = 0;
+  for (const node::SampleRect& a : areas) {
+    width = std::max(width, a.x1);
+    height = std::max(height, a.y1);
+  }
+  for (std::size_t i = 0; i < areas.size(); ++i) {
+    const node::SampleRect& a = areas[i];
+    ScreenSegment piece;
+    for (const ScreenSegment& s : sample.segments) {
+      // Half-open areas: a piece lying exactly on the far boundary belongs to the next area.
+      if (!clipSegment(s, a.x0, a.y0, a.x1, a.y1, metric, piece)) continue;
+      if (a.x1 < width && std::min(piece.x0, piece.x1) >= a.x1) continue;
+      if (a.y1 < height && std::min(piece.y0, piece.y1) >= a.y1) continue;
+      loads[i] += piece.weight * sample.raysPerSegment;
+    }
+  }
+  return loads;
+}
+
+}  // namespace raycube::host

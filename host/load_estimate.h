@@ -1,0 +1,48 @@
+#pragma once
+// Priol & Bouatouch 3.7.1, static load distribution, step 1: sub-sample the image (one pixel per w x w
+// window), trace those pixels' whole ray trees, and project every ray segment in perspective onto the
+// screen. Each projected segment stands for the w x w coherent rays around it.
+#include <cstdint>
+#include <vector>
+
+#include "core/scene.h"
+#include "core/view.h"
+#include "core/whitted.h"
+#include "node/screen_grid.h"
+
+namespace raycube::host {
+
+enum class LoadMetric : std::uint8_t {
+  Rays,  // the paper's: every ray (every piece of a split ray) counts one
+  Cost,  // refined: a ray weighs the traversal steps and intersection tests its sub-sampled twin cost,
+         // shared between its pieces in proportion to their projected length
+};
+
+// A projected ray segment in continuous sample-boundary coordinates (x in [0, samplesX], y in [0, samplesY]).
+struct ScreenSegment {
+  double x0, y0, x1, y1;
+  double weight;  // 1 (rays) or the ray's cost
+};
+
+struct LoadSample {
+  std::vector<ScreenSegment> segments;
+  double raysPerSegment = 1;  // w * w: how many rays one sub-sampled ray represents
+  std::uint64_t raysTraced = 0;
+};
+
+// lightRaysWhereTheyStart: with light cones or pyramids (3.7.2) a light ray is processed only where it
+// starts, so it weighs on that point of the screen instead of along its path.
+LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading, int window,
+                         LoadMetric metric, bool lightRaysWhereTheyStart);
+
+// The part of a segment inside a rectangle (Liang-Barsky); false when none. Its weight is scaled by the kept
+// fraction of length for the cost metric and kept whole for the ray metric (figure 9: a split ray counts
+// in both regions).
+bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, double y1, LoadMetric metric,
+                 ScreenSegment& out);
+
+// Estimated load of each area: the weights of the segment pieces inside it, times raysPerSegment.
+std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
+                                  LoadMetric metric);
+
+}  // namespace raycube::host
