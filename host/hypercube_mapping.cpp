@@ -64,13 +64,20 @@ std::vector<std::vector<int>> neighbourLists(const AdjacencyGraph& graph) {
   return neighbours;
 }
 
-// One embedding in progress: where each vertex sits and who occupies each node.
+// One embedding in progress: where each vertex sits, who occupies each node, and for every vertex and
+// node the hops that vertex would have to its placed neighbours from that node. The table makes a
+// candidate move cost O(1) to judge, so greedy and descent scan every node for every vertex cheaply.
 class Placement {
  public:
   Placement(const std::vector<std::vector<int>>& neighbours, int dimension)
       : neighbours_(&neighbours),
+        nodes_(std::uint32_t{1} << dimension),
         nodeOf_(neighbours.size(), kUnplaced),
-        vertexAt_(std::size_t{1} << dimension, -1) {}
+        vertexAt_(nodes_, -1),
+        hopsFrom_(neighbours.size() * nodes_, 0) {
+    for (const auto& list : neighbours) edges_ += static_cast<long>(list.size());
+    edges_ /= 2;
+  }
 
   // Breadth-first greedy: the unplaced vertex with most placed neighbours (then highest degree, then lowest
   // index) takes the free node closest in total hops to those neighbours (ties: lowest node number).
@@ -78,23 +85,21 @@ class Placement {
     const int vertices = static_cast<int>(neighbours_->size());
     std::vector<int> placedNeighbours(neighbours_->size(), 0);
     for (int step = 0; step < vertices; ++step) {
-      int chosen = step == 0 ? first : nextVertex(placedNeighbours);
+      const int chosen = step == 0 ? first : nextVertex(placedNeighbours);
       std::uint32_t bestNode = kUnplaced;
-      long bestCost = std::numeric_limits<long>::max();
-      for (std::uint32_t node = 0; node < vertexAt_.size(); ++node) {
-        if (vertexAt_[node] >= 0) continue;
-        const long cost = hopsToPlacedNeighbours(chosen, node, -1);
-        if (cost < bestCost) {
-          bestCost = cost;
+      int bestHops = std::numeric_limits<int>::max();
+      for (std::uint32_t node = 0; node < nodes_; ++node) {
+        if (vertexAt_[node] < 0 && hopsFrom(chosen, node) < bestHops) {
+          bestHops = hopsFrom(chosen, node);
           bestNode = node;
         }
       }
-      put(chosen, bestNode);
+      place(chosen, bestNode);
       for (int w : (*neighbours_)[chosen]) ++placedNeighbours[w];
     }
   }
 
-  // Steepest-descent per vertex: move it to the node (free, or swapping with that node's occupant) that
+  // Steepest descent per vertex: move it to the node (free, or swapping with that node's occupant) that
   // lowers the total hops most; repeat until a round changes nothing or the round budget is spent.
   void improveBySwaps() {
     const int vertices = static_cast<int>(neighbours_->size());
@@ -102,24 +107,18 @@ class Placement {
       bool improved = false;
       for (int v = 0; v < vertices; ++v) {
         const std::uint32_t here = nodeOf_[v];
-        long bestDelta = 0;
+        int bestDelta = 0;
         std::uint32_t bestNode = kUnplaced;
-        for (std::uint32_t there = 0; there < vertexAt_.size(); ++there) {
+        for (std::uint32_t there = 0; there < nodes_; ++there) {
           if (there == here) continue;
-          const int u = vertexAt_[there];
-          // The edge u-v, if any, keeps its length under a swap, so both sums leave it out.
-          long delta = hopsToPlacedNeighbours(v, there, u) - hopsToPlacedNeighbours(v, here, u);
-          if (u >= 0) delta += hopsToPlacedNeighbours(u, here, v) - hopsToPlacedNeighbours(u, there, v);
+          const int delta = swapDelta(v, there);
           if (delta < bestDelta) {
             bestDelta = delta;
             bestNode = there;
           }
         }
         if (bestNode != kUnplaced) {
-          const int u = vertexAt_[bestNode];
-          vertexAt_[here] = -1;
-          put(v, bestNode);
-          if (u >= 0) put(u, here);
+          swap(v, bestNode);
           improved = true;
         }
       }
@@ -127,39 +126,44 @@ class Placement {
     }
   }
 
-  // Simulated annealing over swaps/moves to random nodes, from the current placement; keeps the cheapest
-  // placement seen. Escapes the local minima greedy + descent stop in (an 8 x 8 grid's last few bad edges).
-  // The generator is fixed and used through plain modulo so every standard library gives the same result.
+  // Simulated annealing over swaps with random nodes, from the current placement; keeps the cheapest
+  // placement seen. Escapes local minima of the descent that no single swap can leave. Most of its moves
+  // are accepted while hot, so it prices them from the neighbour lists rather than paying to keep the table
+  // current, and rebuilds the table at the end. The generator is used through plain modulo so every
+  // standard library gives the same result.
   void anneal(std::uint32_t seed, long moves) {
     std::mt19937 random(seed);
     const auto vertices = static_cast<std::uint32_t>(neighbours_->size());
-    const auto nodes = static_cast<std::uint32_t>(vertexAt_.size());
     long hops = totalHops();
     long bestHops = hops;
     std::vector<std::uint32_t> best = nodeOf_;
-    for (long move = 0; move < moves && bestHops > 0; ++move) {
+    for (long move = 0; move < moves && bestHops > edges_; ++move) {
       const double temperature =
           kHotTemperature * std::pow(kColdTemperature / kHotTemperature, static_cast<double>(move) / moves);
       const int v = static_cast<int>(random() % vertices);
       const std::uint32_t here = nodeOf_[v];
-      const std::uint32_t there = random() % nodes;
+      const std::uint32_t there = random() % nodes_;
       if (there == here) continue;
       const int u = vertexAt_[there];
-      long delta = hopsToPlacedNeighbours(v, there, u) - hopsToPlacedNeighbours(v, here, u);
-      if (u >= 0) delta += hopsToPlacedNeighbours(u, here, v) - hopsToPlacedNeighbours(u, there, v);
+      // The edge u-v, if any, keeps its length under a swap, so both sums leave it out.
+      long delta = hopsExcept(v, there, u) - hopsExcept(v, here, u);
+      if (u >= 0) delta += hopsExcept(u, here, v) - hopsExcept(u, there, v);
       const double uniform = static_cast<double>(random() >> 8) * 0x1p-24;
       if (delta > 0 && uniform >= std::exp(-static_cast<double>(delta) / temperature)) continue;
-      vertexAt_[here] = -1;
-      put(v, there);
-      if (u >= 0) put(u, here);
+      nodeOf_[v] = there;
+      vertexAt_[there] = v;
+      vertexAt_[here] = u;
+      if (u >= 0) nodeOf_[u] = here;
       hops += delta;
       if (hops < bestHops) {
         bestHops = hops;
         best = nodeOf_;
       }
     }
+    std::fill(nodeOf_.begin(), nodeOf_.end(), kUnplaced);
     std::fill(vertexAt_.begin(), vertexAt_.end(), -1);
-    for (std::size_t v = 0; v < best.size(); ++v) put(static_cast<int>(v), best[v]);
+    std::fill(hopsFrom_.begin(), hopsFrom_.end(), 0);
+    for (std::size_t v = 0; v < best.size(); ++v) place(static_cast<int>(v), best[v]);
   }
 
   long totalHops() const {
@@ -172,6 +176,9 @@ class Placement {
     return total;
   }
 
+  // Every edge costs at least one hop: a placement with this total cannot be beaten.
+  long edgeCount() const { return edges_; }
+
   const std::vector<std::uint32_t>& nodes() const { return nodeOf_; }
 
  private:
@@ -180,15 +187,45 @@ class Placement {
     for (int v = 0; v < static_cast<int>(neighbours_->size()); ++v) {
       if (nodeOf_[v] != kUnplaced) continue;
       if (best < 0 || placedNeighbours[v] > placedNeighbours[best] ||
-          (placedNeighbours[v] == placedNeighbours[best] && (*neighbours_)[v].size() > (*neighbours_)[best].size())) {
+          (placedNeighbours[v] == placedNeighbours[best] &&
+           (*neighbours_)[v].size() > (*neighbours_)[best].size())) {
         best = v;
       }
     }
     return best;
   }
 
-  // Hops from node to every placed neighbour of v except `skip`.
-  long hopsToPlacedNeighbours(int v, std::uint32_t node, int skip) const {
+  int& hopsFrom(int v, std::uint32_t node) { return hopsFrom_[static_cast<std::size_t>(v) * nodes_ + node]; }
+
+  bool adjacent(int a, int b) const {
+    const auto& list = (*neighbours_)[a];
+    return std::binary_search(list.begin(), list.end(), b);
+  }
+
+  // Change in total hops if v moved to `there` and its occupant, if any, to v's node. The table counts the
+  // edge u-v from both ends at the length it has now; under a swap it keeps that length, so add it back.
+  int swapDelta(int v, std::uint32_t there) {
+    const std::uint32_t here = nodeOf_[v];
+    const int u = vertexAt_[there];
+    int delta = hopsFrom(v, there) - hopsFrom(v, here);
+    if (u >= 0) {
+      delta += hopsFrom(u, here) - hopsFrom(u, there);
+      if (adjacent(u, v)) delta += 2 * hypercubeHops(here, there);
+    }
+    return delta;
+  }
+
+  void swap(int v, std::uint32_t there) {
+    const std::uint32_t here = nodeOf_[v];
+    const int u = vertexAt_[there];
+    lift(v);
+    if (u >= 0) lift(u);
+    place(v, there);
+    if (u >= 0) place(u, here);
+  }
+
+  // Hops from node to every placed neighbour of v except `skip`, straight from the neighbour list.
+  long hopsExcept(int v, std::uint32_t node, int skip) const {
     long hops = 0;
     for (int w : (*neighbours_)[v]) {
       if (w != skip && nodeOf_[w] != kUnplaced) hops += hypercubeHops(node, nodeOf_[w]);
@@ -196,14 +233,31 @@ class Placement {
     return hops;
   }
 
-  void put(int v, std::uint32_t node) {
+  void place(int v, std::uint32_t node) {
     nodeOf_[v] = node;
     vertexAt_[node] = v;
+    addHopsToNeighbours(v, node, +1);
+  }
+
+  void lift(int v) {
+    addHopsToNeighbours(v, nodeOf_[v], -1);
+    vertexAt_[nodeOf_[v]] = -1;
+    nodeOf_[v] = kUnplaced;
+  }
+
+  void addHopsToNeighbours(int v, std::uint32_t node, int sign) {
+    for (int w : (*neighbours_)[v]) {
+      int* row = &hopsFrom(w, 0);
+      for (std::uint32_t x = 0; x < nodes_; ++x) row[x] += sign * hypercubeHops(x, node);
+    }
   }
 
   const std::vector<std::vector<int>>* neighbours_;  // a pointer so placements can be copied
+  std::uint32_t nodes_;
   std::vector<std::uint32_t> nodeOf_;
   std::vector<int> vertexAt_;
+  std::vector<int> hopsFrom_;  // vertices x nodes
+  long edges_ = 0;
 };
 
 }  // namespace
@@ -254,7 +308,7 @@ std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph) {
 
   Placement best(neighbours, dimension);
   long bestHops = std::numeric_limits<long>::max();
-  for (int s = 0; s < starts; ++s) {
+  for (int s = 0; s < starts && bestHops > best.edgeCount(); ++s) {
     Placement placement(neighbours, dimension);
     placement.placeGreedily(order[s]);
     placement.improveBySwaps();
@@ -264,6 +318,7 @@ std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph) {
       best = placement;
     }
   }
+  if (bestHops == best.edgeCount()) return best.nodes();
   Placement annealed = best;
   annealed.anneal(kAnnealingSeed, kAnnealingMovesPerVertex * graph.vertices);
   annealed.improveBySwaps();

@@ -129,10 +129,11 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
                            MachineReport* report) {
   const auto start = Clock::now();
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling);
-  if (machine.columns < 1 || machine.rows < 1 || machine.columns > view.samplesX() ||
-      machine.rows > view.samplesY())
-    throw std::invalid_argument(fmt::format("--procs {}x{}: every processor needs at least one sample row and "
-                                            "column of the {}x{} sample grid",
+  const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
+  const bool bspFits = (long long)machine.rows * machine.columns <= (long long)view.samplesX() * view.samplesY();
+  if (machine.columns < 1 || machine.rows < 1 || !(machine.balance == Balance::Bsp ? bspFits : gridFits))
+    throw std::invalid_argument(fmt::format("--procs {}x{}: every processor needs at least one sample (and, on a "
+                                            "uniform grid, one sample row and column) of the {}x{} sample grid",
                                             machine.rows, machine.columns, view.samplesX(), view.samplesY()));
   if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
   if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");

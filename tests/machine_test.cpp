@@ -49,6 +49,7 @@ MachineSettings machineFor(Grid grid, std::size_t capacity,
   m.columns = grid.columns;
   m.queueCapacity = capacity;
   m.lightRays = lightRays;
+  m.balance = Balance::Uniform;  // the R x C grid of 3.1; the BSP has its own tests (load_distribution_test)
   return m;
 }
 

@@ -1,0 +1,142 @@
+// Static load distribution (Priol & Bouatouch 3.7.1): the sub-sampled estimate, the BSP of the screen, and
+// what they achieve on the machine.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/balls.h"
+#include "host/bsp_partition.h"
+#include "host/machine_report.h"
+#include "host/sequential_renderers.h"
+#include "machine_test_support.h"
+#include "node/region_map.h"
+
+namespace raycube::host {
+namespace {
+
+using namespace testing_support;
+
+LoadSample randomSegments(int count, double w, double h, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> x(0, w), y(0, h);
+  LoadSample sample;
+  for (int i = 0; i < count; ++i) sample.segments.push_back(ScreenSegment{x(random), y(random), x(random), y(random), 1.0});
+  return sample;
+}
+
+// Any processor count, power of two or not, tiles the screen with non-empty areas (RegionMap checks the
+// tiling: no overlap, no hole).
+TEST(Bsp, TilesTheScreenForAnyProcessorCount) {
+  const core::Scene scene = core::makeBalls(1);
+  for (int side : {9, 40, 64}) {
+    const core::View view(scene.camera, side, side, core::Sampling::Centers);
+    const node::ScreenLines lines(view);
+    const LoadSample sample = randomSegments(500, side, side, unsigned(side));
+    for (int p : {1, 2, 3, 5, 7, 16, 31, 32, 64, 81}) {
+      if (p > side * side) continue;
+      for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost}) {
+        const auto areas = bspPartition(side, side, p, sample, metric);
+        ASSERT_EQ(int(areas.size()), p);
+        EXPECT_NO_THROW(node::RegionMap(areas, lines)) << side << " px, " << p << " processors";
+      }
+    }
+  }
+  EXPECT_THROW(bspPartition(2, 2, 5, LoadSample{}, LoadMetric::Rays), std::invalid_argument);
+}
+
+// With the load concentrated on one side, the BSP gives that side small areas.
+TEST(Bsp, FollowsTheLoad) {
+  LoadSample sample;
+  for (int i = 0; i < 1000; ++i) sample.segments.push_back(ScreenSegment{10.0 + i % 7, 10.0 + i % 11, 10.5 + i % 7, 10.5 + i % 11, 1});
+  sample.segments.push_back(ScreenSegment{90, 90, 91, 91, 1});
+  const auto areas = bspPartition(100, 100, 4, sample, LoadMetric::Rays);
+  const std::vector<double> loads = estimateLoads(areas, sample, LoadMetric::Rays);
+  const double total = loads[0] + loads[1] + loads[2] + loads[3];
+  for (double l : loads) EXPECT_LT(l, 0.6 * total);
+  long long smallest = 100 * 100;
+  for (const node::SampleRect& a : areas) smallest = std::min(smallest, a.count());
+  EXPECT_LT(smallest, 100 * 100 / 8);
+}
+
+// Figure 9: a segment crossing a splitting line counts in both regions (ray metric) or is shared in
+// proportion to its length (cost metric).
+TEST(LoadEstimate, SplitSegmentsCountOnBothSides) {
+  LoadSample sample;
+  sample.segments.push_back(ScreenSegment{1, 5, 9, 5, 8.0});
+  const std::vector<node::SampleRect> halves{{0, 5, 0, 10}, {5, 10, 0, 10}};
+  const auto rays = estimateLoads(halves, sample, LoadMetric::Rays);
+  EXPECT_EQ(rays[0], 8.0);
+  EXPECT_EQ(rays[1], 8.0);
+  const auto cost = estimateLoads(halves, sample, LoadMetric::Cost);
+  EXPECT_DOUBLE_EQ(cost[0] + cost[1], 8.0);
+  EXPECT_DOUBLE_EQ(cost[0], 4.0);
+}
+
+MachineSettings bspMachine(int processors, LoadMetric metric, int window, node::LightRayMode lights,
+                           std::size_t capacity = 8) {
+  MachineSettings m;
+  m.rows = 1;
+  m.columns = processors;
+  m.balance = Balance::Bsp;
+  m.loadMetric = metric;
+  m.subsampleWindow = window;
+  m.lightRays = lights;
+  m.queueCapacity = capacity;
+  return m;
+}
+
+// Every balance, metric, light-ray mode, processor count and capacity renders the reference image.
+TEST(LoadDistribution, EveryCombinationMatchesTheReference) {
+  const core::Scene scene = core::makeBalls(2);
+  const RenderSettings settings = settingsFor(sanitized() ? 16 : 40);
+  const RenderResult reference = renderReference(scene, settings);
+  const std::vector<int> counts = sanitized() ? std::vector<int>{5, 16} : std::vector<int>{4, 5, 16, 32, 64};
+  for (int p : counts)
+    for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost})
+      for (node::LightRayMode lights : {node::LightRayMode::Messages, node::LightRayMode::Cone, node::LightRayMode::Pyramid})
+        for (std::size_t capacity : {std::size_t(1), std::size_t(128)}) {
+          const std::string label = "bsp " + std::to_string(p) + " metric " + std::to_string(int(metric)) +
+                                    " lights " + std::to_string(int(lights)) + " capacity " + std::to_string(capacity);
+          MachineReport report;
+          const RenderResult result =
+              renderMachineWatched(scene, settings, bspMachine(p, metric, 4, lights, capacity), report, label);
+          EXPECT_TRUE(core::bitIdentical(result.image, reference.image)) << label;
+          EXPECT_EQ(report.contributionsAccumulated, reference.counters.contributions) << label;
+          EXPECT_EQ(int(report.processors.size()), p) << label;
+        }
+}
+
+// Figure 15 on a uniform grid, where loads differ: the sub-sampled estimate follows the rays processed.
+TEST(LoadDistribution, EstimateFollowsTheRaysProcessed) {
+  if (sanitized()) GTEST_SKIP() << "a measurement at 128x128";
+  const core::Scene scene = core::makeBalls(2);
+  MachineSettings m;
+  m.rows = 4;
+  m.columns = 4;
+  m.balance = Balance::Uniform;
+  m.loadMetric = LoadMetric::Rays;
+  m.subsampleWindow = 2;
+  MachineReport report;
+  renderMachine(scene, settingsFor(128), m, &report);
+  const LoadBalance b = loadBalanceOf(report);
+  EXPECT_GT(b.pearsonRays, 0.9);
+  for (std::size_t i = 0; i < b.estimated.size(); ++i) EXPECT_NEAR(b.estimated[i], b.actualRays[i], 0.1) << i;
+}
+
+// The BSP evens out the rays processed that the uniform grid leaves uneven (balls2, 128x128, 16 processors).
+TEST(LoadDistribution, BspBalancesBetterThanTheUniformGrid) {
+  if (sanitized()) GTEST_SKIP() << "a measurement at 128x128";
+  const core::Scene scene = core::makeBalls(2);
+  MachineReport uniform, bsp;
+  MachineSettings u;
+  u.balance = Balance::Uniform;
+  renderMachine(scene, settingsFor(128), u, &uniform);
+  renderMachine(scene, settingsFor(128), bspMachine(16, LoadMetric::Rays, 2, node::LightRayMode::Pyramid), &bsp);
+  const LoadBalance bu = loadBalanceOf(uniform), bb = loadBalanceOf(bsp);
+  EXPECT_LT(bb.raysMaxOverMean, bu.raysMaxOverMean);
+  EXPECT_LE(bb.raysMaxOverMean, 1.15);
+  EXPECT_GE(bb.raysMinOverMean, 0.85);
+}
+
+}  // namespace
+}  // namespace raycube::host
