@@ -14,12 +14,13 @@ namespace {
 
 // Node numbers are uint32_t; 31 bits keeps 1 << d representable and is far beyond any iPSC (d <= 7).
 constexpr int kMaxAddressBits = 31;
-// Bounded work: each swap round costs O(vertices * nodes * degree); rounds stop earlier when nothing
-// improves, which on the machine's graphs happens after a handful.
+// Bounded work: each swap round judges vertices x nodes moves at O(1) each; rounds stop earlier when
+// nothing improves, which on the machine's graphs happens after a handful.
 constexpr int kMaxImprovementRounds = 32;
 // Greedy placement depends heavily on its first vertex (on an 8 x 8 grid the eight best-connected starts
-// all end near dilation 1.3, while one of the 64 reaches the Gray code's 1.0), so it starts from as many vertices as this budget of
-// vertices x nodes x starts allows: every vertex up to 64 processors, a few at 256.
+// all end near dilation 1.3, while one of the 64 reaches the Gray code's 1.0), so it starts from as many
+// vertices as this budget of vertices x nodes x starts allows: every vertex up to 64 processors, a few at
+// 256.
 constexpr long kGreedyStartBudget = 64L * 64 * 64;
 // Annealing after the best start: a deterministic seed, a geometric cooling from a temperature where a
 // one-hop loss is taken a third of the time down to one where it practically never is.
@@ -27,6 +28,8 @@ constexpr long kAnnealingMovesPerVertex = 1000;
 constexpr double kHotTemperature = 1.0;
 constexpr double kColdTemperature = 0.05;
 constexpr std::uint32_t kAnnealingSeed = 1988;
+// The placement keeps a vertices x nodes table of ints: 4 MB at this size, far past any machine we emulate.
+constexpr int kMaxMappedVertices = 1024;
 constexpr std::uint32_t kUnplaced = std::numeric_limits<std::uint32_t>::max();
 
 void requirePositiveGrid(int rows, int columns, const char* who) {
@@ -43,8 +46,9 @@ void requireEdgesInside(const AdjacencyGraph& graph, const char* who) {
   }
   for (const auto& [a, b] : graph.edges) {
     if (a < 0 || a >= graph.vertices || b < 0 || b >= graph.vertices) {
-      throw std::invalid_argument(std::string(who) + ": edge (" + std::to_string(a) + ", " + std::to_string(b) +
-                                  ") names a vertex outside [0, " + std::to_string(graph.vertices) + ")");
+      throw std::invalid_argument(std::string(who) + ": edge (" + std::to_string(a) + ", " +
+                                  std::to_string(b) + ") names a vertex outside [0, " +
+                                  std::to_string(graph.vertices) + ")");
     }
   }
 }
@@ -262,7 +266,9 @@ class Placement {
 
 }  // namespace
 
-int hypercubeHops(std::uint32_t a, std::uint32_t b) { return std::popcount(a ^ b); }
+int hypercubeHops(std::uint32_t a, std::uint32_t b) {
+  return std::popcount(a ^ b);
+}
 
 int hypercubeDimension(int processors) {
   if (processors < 1) {
@@ -277,8 +283,9 @@ std::vector<std::uint32_t> grayCodeGridMapping(int rows, int columns) {
   const int columnBits = hypercubeDimension(columns);
   const int rowBits = hypercubeDimension(rows);
   if (rowBits + columnBits > kMaxAddressBits) {
-    throw std::invalid_argument("grayCodeGridMapping: a " + std::to_string(rows) + " x " + std::to_string(columns) +
-                                " grid needs more than " + std::to_string(kMaxAddressBits) + " address bits");
+    throw std::invalid_argument("grayCodeGridMapping: a " + std::to_string(rows) + " x " +
+                                std::to_string(columns) + " grid needs more than " +
+                                std::to_string(kMaxAddressBits) + " address bits");
   }
   const auto gray = [](std::uint32_t x) { return x ^ (x >> 1); };
   std::vector<std::uint32_t> mapping;
@@ -293,6 +300,10 @@ std::vector<std::uint32_t> grayCodeGridMapping(int rows, int columns) {
 
 std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph) {
   requireEdgesInside(graph, "mapToHypercube");
+  if (graph.vertices > kMaxMappedVertices) {
+    throw std::invalid_argument("mapToHypercube: " + std::to_string(graph.vertices) + " vertices; at most " +
+                                std::to_string(kMaxMappedVertices) + " are supported");
+  }
   if (graph.vertices == 0) return {};
   const int dimension = hypercubeDimension(graph.vertices);
   const auto neighbours = neighbourLists(graph);
@@ -333,7 +344,8 @@ Dilation dilationOf(const AdjacencyGraph& graph, const std::vector<std::uint32_t
                                 std::to_string(graph.vertices) + " vertices");
   }
   Dilation dilation;
-  if (!mapping.empty()) dilation.dimension = std::bit_width(*std::max_element(mapping.begin(), mapping.end()));
+  if (!mapping.empty())
+    dilation.dimension = std::bit_width(*std::max_element(mapping.begin(), mapping.end()));
   if (graph.edges.empty()) return dilation;
   long total = 0;
   for (const auto& [a, b] : graph.edges) {

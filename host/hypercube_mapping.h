@@ -1,8 +1,10 @@
 #pragma once
 // Placing the machine's regions on the iPSC's d-dimensional hypercube. A ray leaving a region goes to a
 // neighbouring region, and a message between cube nodes a and b crosses popcount(a ^ b) links, so adjacent
-// regions should sit on nodes few hops apart (Priol & Bouatouch 3.1: the grid of pixel areas is mapped
-// onto the cube so that neighbouring areas are neighbouring nodes).
+// regions should sit on nodes few hops apart. Priol & Bouatouch 3: the 64-node iPSC runs a 2D array, each
+// processor linked to its four neighbours (the Gray code below); 3.7.1: a BSP's regions form an arbitrary
+// adjacency graph, and "it is important to suitably map this graph on the hypercube topology in order to
+// minimize the messages routing" (mapToHypercube).
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -40,7 +42,8 @@ std::vector<std::uint32_t> grayCodeGridMapping(int rows, int columns);
 // Heuristic embedding of any adjacency graph (e.g. a BSP's, whose regions are not a grid) into the smallest
 // cube, d = hypercubeDimension(vertices): injective, every node < 2^d, deterministic. Greedy placement
 // followed by swap/move improvement; meant for the machine's sizes (up to a few hundred regions).
-// Throws std::invalid_argument when an edge names a vertex outside [0, vertices) or vertices < 0.
+// Throws std::invalid_argument when an edge names a vertex outside [0, vertices), vertices < 0, or
+// vertices > 1024.
 std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph);
 
 // Mean and max hops over the graph's edges (both 0 without edges). Throws std::invalid_argument when the

@@ -48,7 +48,9 @@ AdjacencyGraph randomRectangleSubdivision(int count, unsigned seed) {
   }
   AdjacencyGraph graph;
   graph.vertices = count;
-  const auto overlap = [](double a0, double a1, double b0, double b1) { return std::min(a1, b1) > std::max(a0, b0); };
+  const auto overlap = [](double a0, double a1, double b0, double b1) {
+    return std::min(a1, b1) > std::max(a0, b0);
+  };
   for (int a = 0; a < count; ++a) {
     for (int b = a + 1; b < count; ++b) {
       const Rect& p = rects[a];
@@ -108,7 +110,8 @@ TEST_P(GrayCodePowerOfTwo, EveryGridEdgeIsOneHop) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Grids, GrayCodePowerOfTwo,
-                         testing::Values(std::pair{4, 4}, std::pair{8, 8}, std::pair{2, 8}, std::pair{1, 16}));
+                         testing::Values(std::pair{4, 4}, std::pair{8, 8}, std::pair{2, 8},
+                                         std::pair{1, 16}));
 
 TEST(GrayCode, NonPowerOfTwoGridIsInjectiveInAWiderCube) {
   const auto mapping = grayCodeGridMapping(3, 5);
@@ -117,11 +120,13 @@ TEST(GrayCode, NonPowerOfTwoGridIsInjectiveInAWiderCube) {
   expectInjectiveWithin(mapping, 5);
   const Dilation dilation = dilationOf(gridAdjacency(3, 5), mapping);
   EXPECT_EQ(dilation.dimension, 5);
-  std::cout << "gray 3x5: mean " << dilation.mean << " max " << dilation.max << " dimension " << dilation.dimension
-            << "\n";
+  std::cout << "gray 3x5: mean " << dilation.mean << " max " << dilation.max << " dimension "
+            << dilation.dimension << "\n";
 }
 
-TEST(GrayCode, RejectsEmptyGrid) { EXPECT_THROW(grayCodeGridMapping(0, 3), std::invalid_argument); }
+TEST(GrayCode, RejectsEmptyGrid) {
+  EXPECT_THROW(grayCodeGridMapping(0, 3), std::invalid_argument);
+}
 
 TEST(DilationOf, HandMadeCases) {
   AdjacencyGraph triangle{3, {{0, 1}, {1, 2}, {2, 0}}};
@@ -157,6 +162,8 @@ TEST(MapToHypercube, TrivialGraphs) {
   const auto isolated = mapToHypercube(AdjacencyGraph{5, {}});
   expectInjectiveWithin(isolated, 3);
   EXPECT_THROW(mapToHypercube(AdjacencyGraph{2, {{0, 5}}}), std::invalid_argument);
+  EXPECT_THROW(mapToHypercube(AdjacencyGraph{-1, {}}), std::invalid_argument);
+  EXPECT_THROW(mapToHypercube(AdjacencyGraph{5000, {}}), std::invalid_argument);
 }
 
 class MapGrid : public testing::TestWithParam<int> {};
@@ -168,8 +175,8 @@ TEST_P(MapGrid, CloseToTheGrayCode) {
   ASSERT_EQ(mapping.size(), static_cast<std::size_t>(side * side));
   expectInjectiveWithin(mapping, hypercubeDimension(side * side));
   const Dilation dilation = dilationOf(graph, mapping);
-  std::cout << "heuristic grid " << side << "x" << side << ": mean " << dilation.mean << " max " << dilation.max
-            << " dimension " << dilation.dimension << "\n";
+  std::cout << "heuristic grid " << side << "x" << side << ": mean " << dilation.mean << " max "
+            << dilation.max << " dimension " << dilation.dimension << "\n";
   EXPECT_LE(dilation.mean, 1.3);
   EXPECT_EQ(mapping, mapToHypercube(graph)) << "not deterministic";
 }
@@ -207,8 +214,8 @@ TEST_P(MapSubdivision, InjectiveInSmallestCubeAndBetterThanIdentity) {
     identitySum += dilationOf(graph, identityMapping(processors)).mean;
     worstMax = std::max(worstMax, heuristic.max);
   }
-  std::cout << "subdivision P=" << processors << ": heuristic mean " << heuristicSum / kSeeds << " (worst max "
-            << worstMax << "), identity mean " << identitySum / kSeeds << "\n";
+  std::cout << "subdivision P=" << processors << ": heuristic mean " << heuristicSum / kSeeds
+            << " (worst max " << worstMax << "), identity mean " << identitySum / kSeeds << "\n";
   EXPECT_LT(heuristicSum, identitySum);
 }
 
