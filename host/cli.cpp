@@ -15,6 +15,7 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/machine.h"
+#include "host/load_chart.h"
 #include "host/machine_report.h"
 #include "host/sequential_renderers.h"
 #include "host/stats_report.h"
@@ -55,6 +56,7 @@ struct RenderCommand {
   bool quiet = false;
   std::string procs = "4x4";
   std::string overlayPath;
+  std::string loadChartPath;
   std::string lightRays = "pyramid";
   std::string balance = "bsp";
   std::string loadMetric = "cost";
@@ -129,6 +131,11 @@ int runRender(const RenderCommand& cmd) {
     core::writeImage(loadOverlay(result.image, *report, settings.sampling == core::Sampling::Corners),
                      cmd.overlayPath);
   }
+  if (!cmd.loadChartPath.empty()) {
+    if (!report) throw std::invalid_argument("--load-chart needs --mode machine");
+    const LoadBalance balance = loadBalanceOf(*report);
+    core::writeImage(loadChart(balance.estimated, balance.actualInMetric), cmd.loadChartPath);
+  }
   if (!cmd.statsPath.empty()) {
     nlohmann::json json = statsJson(scene, result);
     if (report) json["machine"] = machineJson(*report);
@@ -172,6 +179,8 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
   render->add_option("-o,--output", cmd.output, "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
   render->add_option("--overlay", cmd.overlayPath, "Machine: write the image with regions and their load (.png)");
+  render->add_option("--load-chart", cmd.loadChartPath,
+                     "Machine: figure 15, estimated against actual rays per processor, as a bar chart (.png)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
   render->get_option("--balls")->excludes("scene");
 }

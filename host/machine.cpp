@@ -12,6 +12,7 @@
 
 #include "core/framebuffer.h"
 #include "host/bsp_partition.h"
+#include "host/hypercube_mapping.h"
 #include "host/jitter_transport.h"
 #include "host/progress.h"
 #include "host/shared_memory_transport.h"
@@ -123,6 +124,24 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
   return setups;
 }
 
+// The iPSC was a hypercube: number the regions so that neighbours are few hops apart (3.7.1: "it is
+// important to suitably map this graph on the hypercube topology"). Gray codes embed the uniform grid with
+// one hop per edge; the BSP's adjacency graph gets the greedy heuristic.
+void mapOntoHypercube(const node::RegionMap& regions, const MachineSettings& machine, MachineReport& out) {
+  AdjacencyGraph graph;
+  graph.vertices = regions.processors();
+  for (int p = 0; p < regions.processors(); ++p)
+    for (int n : regions.neighbours(p))
+      if (n > p) graph.edges.emplace_back(p, n);
+  out.adjacencyEdges = graph.edges.size();
+  out.hypercubeNode = machine.balance == Balance::Uniform ? grayCodeGridMapping(machine.rows, machine.columns)
+                                                          : mapToHypercube(graph);
+  const Dilation d = dilationOf(graph, out.hypercubeNode);
+  out.dilationMean = d.mean;
+  out.dilationMax = d.max;
+  out.hypercubeDimension = d.dimension;
+}
+
 }  // namespace
 
 RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings, const MachineSettings& machine,
@@ -220,6 +239,7 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   out.settings = machine;
   out.estimatedLoad = estimateLoads(areas, load, machine.loadMetric);
   out.subsampledRays = load.raysTraced;
+  mapOntoHypercube(regions, machine, out);
   out.contributionsAccumulated = accumulated;
   for (int p = 0; p < regions.processors(); ++p) {
     ProcessorReport pr;

@@ -42,6 +42,12 @@ struct MachineReport {
   // metric used to partition; and how many rays were sub-sampled.
   std::vector<double> estimatedLoad;
   std::uint64_t subsampledRays = 0;
+  // The regions on the iPSC's hypercube: node number per processor, and hops per adjacency edge.
+  std::vector<std::uint32_t> hypercubeNode;
+  double dilationMean = 0;
+  int dilationMax = 0;
+  int hypercubeDimension = 0;
+  std::size_t adjacencyEdges = 0;
   std::vector<ProcessorReport> processors;
   std::size_t messageBytes = sizeof(node::RayMessage);
   std::uint64_t contributionsAccumulated = 0;

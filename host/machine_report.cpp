@@ -1,5 +1,7 @@
 #include "host/machine_report.h"
 
+#include "host/load_chart.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -29,22 +31,6 @@ std::vector<double> normalisedToMean(std::vector<double> v) {
   return v;
 }
 
-double correlation(const std::vector<double>& a, const std::vector<double>& b) {
-  const double n = double(a.size());
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ma += a[i] / n;
-    mb += b[i] / n;
-  }
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
-}
-
 }  // namespace
 
 LoadBalance loadBalanceOf(const MachineReport& report) {
@@ -63,8 +49,9 @@ LoadBalance loadBalanceOf(const MachineReport& report) {
     b.costMaxOverMean = *std::max_element(b.actualCost.begin(), b.actualCost.end());
     b.costMinOverMean = *std::min_element(b.actualCost.begin(), b.actualCost.end());
   }
-  if (b.estimated.size() == b.actualRays.size() && b.estimated.size() > 1)
-    b.pearsonRays = correlation(b.estimated, b.actualRays);
+  b.actualInMetric = report.settings.loadMetric == LoadMetric::Rays ? b.actualRays : b.actualCost;
+  if (b.estimated.size() == b.actualInMetric.size() && b.estimated.size() > 1)
+    b.pearson = pearson(b.estimated, b.actualInMetric);
   return b;
 }
 
@@ -85,23 +72,26 @@ std::string machineTable(const MachineReport& report) {
       report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes, byKind[0],
       byKind[1], byKind[2], byKind[3], forwarded, refused);
   const LoadBalance balance = loadBalanceOf(report);
-  text += fmt::format("  termination: {} token rounds, {} token passes\n", report.probes, report.tokenPasses);
+  text += fmt::format("  termination: {} token rounds, {} token passes; hypercube of dimension {}: {} adjacencies, "
+                      "dilation mean {:.2f} max {}\n",
+                      report.probes, report.tokenPasses, report.hypercubeDimension, report.adjacencyEdges,
+                      report.dilationMean, report.dilationMax);
   text += fmt::format(
       "  load ({}, {} metric, sub-sampling {}x{}): rays processed max/mean {:.2f} min/mean {:.2f}; cost max/mean "
-      "{:.2f} min/mean {:.2f}; estimate vs rays Pearson r {:.3f}\n",
+      "{:.2f} min/mean {:.2f}; estimate vs actual Pearson r {:.3f}\n",
       report.settings.balance == Balance::Bsp ? "bsp" : "uniform",
       report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays", report.settings.subsampleWindow,
       report.settings.subsampleWindow, balance.raysMaxOverMean, balance.raysMinOverMean, balance.costMaxOverMean,
-      balance.costMinOverMean, balance.pearsonRays);
+      balance.costMinOverMean, balance.pearson);
   (void)mean;
   (void)maxLoad;
-  text += "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  est/mean  rays/mean\n";
+  text += "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  est/mean  act/mean\n";
   for (std::size_t i = 0; i < report.processors.size(); ++i) {
     const node::NodeStats& n = report.processors[i].node;
     text += fmt::format("  {:>4} {:>7} {:>7} {:>6} {:>10} {:>8} {:>9} {:>9} {:>4} {:>8} {:>9.2f} {:>10.2f}\n", n.id,
                         n.area.count(), n.objects, n.cells, n.processed.totalRays(), n.processed.intersectionTests,
                         sum(n.sent), sum(n.received), n.forwarded, n.refusedPushes,
-                        i < balance.estimated.size() ? balance.estimated[i] : 0.0, balance.actualRays[i]);
+                        i < balance.estimated.size() ? balance.estimated[i] : 0.0, balance.actualInMetric[i]);
   }
   return text;
 }
@@ -157,10 +147,16 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"loadMetric", report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays"},
           {"subsampleWindow", report.settings.subsampleWindow},
           {"subsampledRays", report.subsampledRays},
+          {"hypercube", {{"dimension", report.hypercubeDimension},
+                         {"nodeOfProcessor", report.hypercubeNode},
+                         {"adjacencyEdges", report.adjacencyEdges},
+                         {"dilationMean", report.dilationMean},
+                         {"dilationMax", report.dilationMax}}},
           {"figure15", {{"estimatedOverMean", balance.estimated},
                         {"raysProcessedOverMean", balance.actualRays},
                         {"costOverMean", balance.actualCost},
-                        {"pearsonEstimateVsRays", balance.pearsonRays},
+                        {"actualInMetricOverMean", balance.actualInMetric},
+                        {"pearsonEstimateVsActual", balance.pearson},
                         {"raysMaxOverMean", balance.raysMaxOverMean},
                         {"raysMinOverMean", balance.raysMinOverMean},
                         {"costMaxOverMean", balance.costMaxOverMean},

@@ -15,7 +15,9 @@ namespace raycube::host {
 struct LoadBalance {
   std::vector<double> estimated, actualRays, actualCost;  // normalised to mean 1
   double raysMaxOverMean = 0, raysMinOverMean = 0, costMaxOverMean = 0, costMinOverMean = 0;
-  double pearsonRays = 0;  // correlation of the estimate with the actual rays processed
+  // The actual load in the estimate's own metric (rays processed, or their cost), and the correlation.
+  std::vector<double> actualInMetric;
+  double pearson = 0;
 };
 LoadBalance loadBalanceOf(const MachineReport& report);
 

@@ -119,7 +119,7 @@ TEST(LoadDistribution, EstimateFollowsTheRaysProcessed) {
   MachineReport report;
   renderMachine(scene, settingsFor(128), m, &report);
   const LoadBalance b = loadBalanceOf(report);
-  EXPECT_GT(b.pearsonRays, 0.9);
+  EXPECT_GT(b.pearson, 0.9);
   for (std::size_t i = 0; i < b.estimated.size(); ++i) EXPECT_NEAR(b.estimated[i], b.actualRays[i], 0.1) << i;
 }
 
