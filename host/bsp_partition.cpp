@@ -7,6 +7,8 @@
 namespace raycube::host {
 namespace {
 
+constexpr int kCoarseCandidates = 32;
+
 struct Splitter {
   LoadMetric metric;
   std::vector<node::SampleRect> leaves;
@@ -46,12 +48,12 @@ struct Splitter {
     const long long across = axis == 0 ? r.height() : r.width();
     int best = -1, p1 = 0;
     double bestImbalance = std::numeric_limits<double>::infinity();
-    for (int k = lo + 1; k < hi; ++k) {
+    auto consider = [&](int k) {
       // Processors each side can take: at least one sample each. Prefer halving the count (ratio
       // floor(P/2) : ceil(P/2)); shift it only when the cut leaves one side too few samples.
       const long long most = std::min<long long>(processors - 1, (k - lo) * across);
       const long long least = std::max<long long>(1, processors - (hi - k) * across);
-      if (least > most) continue;
+      if (least > most) return;
       const int first = int(std::clamp<long long>(processors / 2, least, most)), second = processors - first;
       double below, above;
       sides(pieces, axis, k, below, above);
@@ -63,7 +65,13 @@ struct Splitter {
         best = k;
         p1 = first;
       }
-    }
+    };
+    // Coarse to fine: every step-th line, then every line around the best one (loads vary smoothly).
+    const int step = std::max(1, (hi - lo) / kCoarseCandidates);
+    for (int k = lo + 1; k < hi; k += step) consider(k);
+    const int coarse = best < 0 ? lo + 1 : best;
+    for (int k = std::max(lo + 1, coarse - step); k < std::min(hi, coarse + step + 1); ++k) consider(k);
+    for (int k = lo + 1; best < 0 && k < hi; ++k) consider(k);  // feasible lines may all lie between
     if (best < 0) throw std::invalid_argument("BSP: an area is too small for its processors");
     const int p2 = processors - p1;
     node::SampleRect first = r, second = r;

@@ -222,7 +222,9 @@ void LogicalProcessor::deliver(const core::RayOutcome& outcome) {
     m.ray = spawned;
     m.tEnter = spawned.ray.tMin;
     const EyeFrameRay er = EyeFrameRay::of(spawned.ray, context_.view);
-    const int owner = er.inFront(m.tEnter) ? context_.regions.ownerAt(er, m.tEnter) : setup_.id;
+    const int owner = !er.inFront(m.tEnter) || context_.regions.holds(setup_.id, er, m.tEnter)
+                          ? setup_.id
+                          : context_.regions.ownerAt(er, m.tEnter);
     m.destination = std::uint16_t(owner);
     if (owner == setup_.id)
       local_.push_back(m);

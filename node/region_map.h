@@ -28,6 +28,12 @@ class RegionMap {
 
   // The processor whose region holds the ray at t (front part only).
   int ownerAt(const EyeFrameRay& ray, double t) const;
+  // Whether region `id` holds the ray at t (front part only): a quick test before the owner lookup.
+  bool holds(int id, const EyeFrameRay& ray, double t) const {
+    const SampleRect& a = areas_[id];
+    const double s = ray.screenAt(0, t), q = ray.screenAt(1, t);
+    return s >= lines_->at(0, a.x0) && s < lines_->at(0, a.x1) && q >= lines_->at(1, a.y0) && q < lines_->at(1, a.y1);
+  }
   // The processor a ray enters when it leaves region `id` at t through the faces (sStep, qStep).
   int ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, int qStep) const;
 
