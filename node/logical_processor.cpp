@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/ray_tree.h"
 #include "core/transmission.h"
 
 namespace raycube::node {
@@ -193,7 +194,7 @@ bool LogicalProcessor::tracedWhereItStarts(const RayMessage& m, double& transmis
                                                                      : nullptr;
   if (volume == nullptr) return false;
   ++stats_.lightRaysTracedLocally;
-  transmission = volume->transmission(m.ray.ray, stats_.processed, crossed_);
+  transmission = core::shadowTransmission(context_.shading, *volume, m.ray, stats_.processed, shadowScratch_);
   return true;
 }
 

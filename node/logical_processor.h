@@ -13,6 +13,7 @@
 #include "core/view.h"
 #include "core/whitted.h"
 #include "core/bvh.h"
+#include "core/ray_tree.h"
 #include "node/light_volume.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
@@ -117,6 +118,7 @@ class LogicalProcessor {
   std::vector<double> mailboxT_;
   std::uint32_t rayStamp_ = 0;
   std::vector<core::Hit> crossed_;
+  core::RayTreeScratch shadowScratch_;  // the shadow cache of light rays traced where they start
   // Termination (Safra, EWD 998)
   std::int64_t messageBalance_ = 0;  // rays sent - rays received
   bool black_ = false;
