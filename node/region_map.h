@@ -45,8 +45,7 @@ class RegionMap {
   std::size_t adjacencyEdges() const;  // undirected
 
  private:
-  int sampleColumn(double s) const;
-  int sampleRow(double q) const;
+  int sampleIndex(int axis, double value, int lo, int hi) const;
 
   std::vector<SampleRect> areas_;
   const ScreenLines* lines_;
