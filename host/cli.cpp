@@ -128,8 +128,7 @@ int runRender(const RenderCommand& cmd) {
   writeOutputs(result.image, scene, cmd.output);
   if (!cmd.overlayPath.empty()) {
     if (!report) throw std::invalid_argument("--overlay needs --mode machine");
-    core::writeImage(loadOverlay(result.image, *report, settings.sampling == core::Sampling::Corners),
-                     cmd.overlayPath);
+    core::writeImage(loadOverlay(result.image, *report), cmd.overlayPath);
   }
   if (!cmd.loadChartPath.empty()) {
     if (!report) throw std::invalid_argument("--load-chart needs --mode machine");

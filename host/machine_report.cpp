@@ -57,15 +57,11 @@ LoadBalance loadBalanceOf(const MachineReport& report) {
 
 std::string machineTable(const MachineReport& report) {
   std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0;
-  std::uint64_t maxLoad = 0, totalLoad = 0;
   for (const ProcessorReport& p : report.processors) {
     for (int k = 0; k < core::kRayKinds; ++k) byKind[k] += p.node.messagesByKind[k];
     forwarded += p.node.forwarded;
     refused += p.node.refusedPushes;
-    maxLoad = std::max(maxLoad, loadOf(p));
-    totalLoad += loadOf(p);
   }
-  const double mean = report.processors.empty() ? 0.0 : double(totalLoad) / report.processors.size();
   std::string text = fmt::format(
       "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, shadow {}; "
       "forwarded {}; refused pushes {}\n",
@@ -83,8 +79,6 @@ std::string machineTable(const MachineReport& report) {
       report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays", report.settings.subsampleWindow,
       report.settings.subsampleWindow, balance.raysMaxOverMean, balance.raysMinOverMean, balance.costMaxOverMean,
       balance.costMinOverMean, balance.pearson);
-  (void)mean;
-  (void)maxLoad;
   text += "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  est/mean  act/mean\n";
   for (std::size_t i = 0; i < report.processors.size(); ++i) {
     const node::NodeStats& n = report.processors[i].node;
@@ -171,7 +165,7 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"processors", processors}};
 }
 
-core::Image loadOverlay(const core::Image& image, const MachineReport& report, bool cornerSampling) {
+core::Image loadOverlay(const core::Image& image, const MachineReport& report) {
   core::Image out = image;
   std::uint64_t maxLoad = 1;
   for (const ProcessorReport& p : report.processors) maxLoad = std::max(maxLoad, loadOf(p));
@@ -179,9 +173,9 @@ core::Image loadOverlay(const core::Image& image, const MachineReport& report, b
   auto clampY = [&](int v) { return std::clamp(v, 0, image.height); };
   for (const ProcessorReport& p : report.processors) {
     const node::SampleRect& a = p.node.area;
-    // Corner samples sit between pixels: a sample rect [x0, x1) covers pixels [x0, x1) as well.
+    // Sample k sits on pixel k (centres) or on its top-left corner (corners): either way the area
+    // [x0, x1) x [y0, y1) of samples is drawn over the same pixels, clamped to the image.
     const int x0 = clampX(a.x0), x1 = clampX(a.x1), y0 = clampY(a.y0), y1 = clampY(a.y1);
-    (void)cornerSampling;
     const double share = double(loadOf(p)) / double(maxLoad);
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {

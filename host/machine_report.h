@@ -25,6 +25,6 @@ std::string machineTable(const MachineReport& report);
 nlohmann::json machineJson(const MachineReport& report);
 // Region borders in white; each region darkened in proportion to (1 - its load / the largest load), and a
 // bar along its top edge as long as its share of the largest load. Load = ray segments processed.
-core::Image loadOverlay(const core::Image& image, const MachineReport& report, bool cornerSampling);
+core::Image loadOverlay(const core::Image& image, const MachineReport& report);
 
 }  // namespace raycube::host
