@@ -14,8 +14,8 @@ namespace raycube::host {
 
 enum class LoadMetric : std::uint8_t {
   Rays,  // the paper's: every ray (every piece of a split ray) counts one
-  Cost,  // refined: a ray weighs the traversal steps and intersection tests its sub-sampled twin cost,
-         // shared between its pieces in proportion to their projected length
+  Cost,  // refined: a ray weighs one plus a share of the traversal steps and intersection tests its
+         // sub-sampled twin cost (relative to the mean), shared between its pieces by projected length
 };
 
 // A projected ray segment in continuous sample-boundary coordinates (x in [0, samplesX], y in [0, samplesY]).

@@ -49,7 +49,8 @@ LoadBalance loadBalanceOf(const MachineReport& report) {
     b.costMaxOverMean = *std::max_element(b.actualCost.begin(), b.actualCost.end());
     b.costMinOverMean = *std::min_element(b.actualCost.begin(), b.actualCost.end());
   }
-  b.actualInMetric = report.settings.loadMetric == LoadMetric::Rays ? b.actualRays : b.actualCost;
+  // Figure 15 compares the estimate with the rays each processor actually processed, whatever the metric.
+  b.actualInMetric = b.actualRays;
   if (b.estimated.size() == b.actualInMetric.size() && b.estimated.size() > 1)
     b.pearson = pearson(b.estimated, b.actualInMetric);
   return b;

@@ -15,7 +15,7 @@ namespace raycube::host {
 struct LoadBalance {
   std::vector<double> estimated, actualRays, actualCost;  // normalised to mean 1
   double raysMaxOverMean = 0, raysMinOverMean = 0, costMaxOverMean = 0, costMinOverMean = 0;
-  // The actual load in the estimate's own metric (rays processed, or their cost), and the correlation.
+  // The actual load the estimate is compared with (figure 15: rays processed), and the correlation.
   std::vector<double> actualInMetric;
   double pearson = 0;
 };

@@ -138,5 +138,19 @@ TEST(LoadDistribution, BspBalancesBetterThanTheUniformGrid) {
   EXPECT_GE(bb.raysMinOverMean, 0.85);
 }
 
+// The paper's table 1 case (balls2, 128x128) on 16 and 32 processors, sub-sampling window 2: the refined
+// metric keeps every processor's rays processed within 15% of the mean.
+TEST(LoadDistribution, CostMetricKeepsRaysProcessedWithinFifteenPercent) {
+  if (sanitized()) GTEST_SKIP() << "a measurement at 128x128";
+  const core::Scene scene = core::makeBalls(2);
+  for (int p : {16, 32}) {
+    MachineReport report;
+    renderMachine(scene, settingsFor(128), bspMachine(p, LoadMetric::Cost, 2, node::LightRayMode::Pyramid), &report);
+    const LoadBalance b = loadBalanceOf(report);
+    EXPECT_LE(b.raysMaxOverMean, 1.15) << p << " processors";
+    EXPECT_GE(b.raysMinOverMean, 0.85) << p << " processors";
+  }
+}
+
 }  // namespace
 }  // namespace raycube::host
