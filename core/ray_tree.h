@@ -71,14 +71,15 @@ void traceRayTree(const Whitted& shading, const Database& database, const Traced
   }
 }
 
-// The eye ray of sample (sx, sy) as the root of its tree.
-inline TracedRay eyeRayOf(const View& view, int sx, int sy) {
+// The k-th eye ray of sample (sx, sy) as the root of its tree. Its coeff is 1 / (rays per sample): each of
+// a sample's rays brings that share of the sample's colour, as every contribution carries coeff.
+inline TracedRay eyeRayOf(const View& view, int sx, int sy, int k = 0) {
   TracedRay r;
-  r.ray = view.eyeRay(sx, sy);
+  r.ray = view.eyeRay(sx, sy, k);
   r.sample = view.sampleIndex(sx, sy);
   r.kind = RayKind::Eye;
   r.depth = 1;
-  r.coeff = 1;
+  r.coeff = 1.0 / view.raysPerSample();
   return r;
 }
 

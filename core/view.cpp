@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
 
@@ -9,9 +10,15 @@
 
 namespace raycube::core {
 
-View::View(const Camera& camera, int width, int height, Sampling sampling)
-    : width_(width), height_(height), sampling_(sampling), eye_(camera.from), hither_(camera.hither) {
+View::View(const Camera& camera, int width, int height, Sampling sampling, int raysPerSample)
+    : width_(width),
+      height_(height),
+      sampling_(sampling),
+      eye_(camera.from),
+      hither_(camera.hither),
+      raysPerSample_(raysPerSample) {
   if (width < 1 || height < 1) throw std::invalid_argument("image size must be at least 1x1");
+  if (raysPerSample < 1) throw std::invalid_argument("samples per pixel must be at least 1");
   const bool corners = sampling == Sampling::Corners;
   samplesX_ = width + (corners ? 1 : 0);
   samplesY_ = height + (corners ? 1 : 0);
@@ -31,10 +38,34 @@ double View::sampleV(int sy) const {
   return (0.5 * (height_ - 1) - (sy - offsetPixels_)) * pitch_;
 }
 
-Ray View::eyeRay(int sx, int sy) const {
+namespace {
+
+// A uniform number in [0, 1) from (sample, ray, axis): a fixed seed per sample (SplitMix64 finaliser).
+double jitter(std::uint64_t sample, std::uint64_t k, std::uint64_t axis) {
+  std::uint64_t z = (sample * 0x9E3779B97F4A7C15ull) ^ (k * 0xBF58476D1CE4E5B9ull) ^ (axis * 0x94D049BB133111EBull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return double(z >> 11) * 0x1p-53;
+}
+
+}  // namespace
+
+Ray View::eyeRay(int sx, int sy, int k) const {
+  double u = sampleU(sx), v = sampleV(sy);
+  if (raysPerSample_ > 1) {
+    // Stratified: a rows x columns grid over the footprint, one jittered ray per stratum.
+    const int rows = int(std::sqrt(double(raysPerSample_)));
+    const int columns = (raysPerSample_ + rows - 1) / rows;
+    const std::uint64_t sample = sampleIndex(sx, sy);
+    const double fx = ((k % columns) + jitter(sample, std::uint64_t(k), 0)) / columns - 0.5;
+    const double fy = ((k / columns) + jitter(sample, std::uint64_t(k), 1)) / rows - 0.5;
+    u += fx * pitch_;
+    v -= fy * pitch_;
+  }
   Ray ray;
   ray.origin = eye_;
-  ray.direction = glm::normalize(forward_ + sampleU(sx) * right_ + sampleV(sy) * up_);
+  ray.direction = glm::normalize(forward_ + u * right_ + v * up_);
   ray.tMin = hither_;
   ray.tMax = kInfinity;
   return ray;

@@ -16,7 +16,9 @@ enum class Sampling : std::uint8_t {
 
 class View {
  public:
-  View(const Camera& camera, int width, int height, Sampling sampling);
+  // raysPerSample > 1: that many eye rays per sample, stratified and jittered over the sample's pixel-sized
+  // footprint with a fixed seed per sample, so the image never depends on who traces which ray.
+  View(const Camera& camera, int width, int height, Sampling sampling, int raysPerSample = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -37,7 +39,10 @@ class View {
   double boundaryIndexU(double u) const { return u / pitch_ + offsetPixels_ + 0.5 * width_; }
   double boundaryIndexV(double v) const { return 0.5 * height_ + offsetPixels_ - v / pitch_; }
 
-  Ray eyeRay(int sx, int sy) const;
+  Ray eyeRay(int sx, int sy) const { return eyeRay(sx, sy, 0); }
+  // The k-th of raysPerSample() eye rays of sample (sx, sy); with one ray per sample, through the sample.
+  Ray eyeRay(int sx, int sy, int k) const;
+  int raysPerSample() const { return raysPerSample_; }
 
   // The eye frame: x right, y up, z forward (depth).
   Vec3 toEye(const Vec3& world) const;
@@ -54,6 +59,7 @@ class View {
   double pitch_;        // screen units between adjacent pixel centres
   double offsetPixels_; // sample sx sits at pixel coordinate sx - offsetPixels_
   double hither_;
+  int raysPerSample_;
 };
 
 }  // namespace raycube::core

@@ -81,7 +81,7 @@ void Whitted::shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) co
     const double k = 1 - eta * eta * (1 - cosI * cosI);
     if (k < 0) {
       reflectCoeff += m.transmittance;  // total internal reflection: the transmitted share is reflected
-    } else {
+    } else if (worthSpawning(ray.coeff * m.transmittance)) {
       TracedRay refracted;
       refracted.ray.direction = glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n);
       refracted.ray.origin = spawnOrigin(sp.point, -ng, hit.t);
@@ -94,7 +94,7 @@ void Whitted::shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) co
       out.spawned.push_back(refracted);
     }
   }
-  if (reflectCoeff > 0) {
+  if (reflectCoeff > 0 && worthSpawning(ray.coeff * reflectCoeff)) {
     TracedRay reflected;
     reflected.ray.direction = glm::normalize(d + 2 * glm::dot(n, toViewer) * n);
     reflected.ray.origin = spawnOrigin(sp.point, ng, hit.t);

@@ -22,6 +22,10 @@ namespace raycube::core {
 
 struct ShadingOptions {
   int maxDepth = 5;  // SPD rule 7: the eye ray has depth 1
+  // Adaptive tree depth (Hall & Greenberg 1983): no reflected or refracted ray whose cumulated Ks/Kt weight
+  // (per sample, so independent of the rays per sample) falls below this. 0, the SPD rule, spawns them all.
+  double minWeight = 0;
+  int raysPerSample = 1;  // eye rays per sample: each starts with coeff 1 / raysPerSample
 };
 
 // What one ray produces: contributions for the host and rays for the tree. Reused to avoid allocation.
@@ -52,6 +56,7 @@ class Whitted {
   // The scene has some material with T > 0: shadow rays must multiply transmittances, not stop at the first hit.
   bool sceneTransmits() const { return sceneTransmits_; }
   int maxDepth() const { return options_.maxDepth; }
+  bool worthSpawning(double coeff) const { return coeff * options_.raysPerSample >= options_.minWeight; }
 
  private:
   const Scene& scene_;

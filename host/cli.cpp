@@ -48,6 +48,8 @@ struct RenderCommand {
   int balls = 0;
   std::string size;
   int depth = 5;
+  int spp = 1;
+  double minWeight = 0;
   std::string mode = "machine";
   int threads = 0;
   std::string sampling = "centers";
@@ -121,6 +123,8 @@ int runRender(const RenderCommand& cmd) {
     std::tie(settings.width, settings.height) = parsePair(cmd.size, "--size", "WxH", core::kMaxNffResolution);
   settings.sampling = kSamplings.at(cmd.sampling);
   settings.shading.maxDepth = cmd.depth;
+  settings.shading.raysPerSample = cmd.spp;
+  settings.shading.minWeight = cmd.minWeight;
   settings.threads = cmd.threads;
   settings.progress = !cmd.quiet;
   std::optional<MachineReport> report;
@@ -156,6 +160,11 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       ->check(CLI::Range(1, 64));
   render->add_option("--mode", cmd.mode, "machine (message passing) | reference | image-parallel")
       ->transform(CLI::IsMember(keysOf(kModes), CLI::ignore_case));
+  render->add_option("--spp", cmd.spp, "Eye rays per pixel, stratified and jittered with a fixed seed per pixel")
+      ->check(CLI::Range(1, 4096));
+  render->add_option("--min-weight", cmd.minWeight,
+                     "Adaptive depth: spawn no reflected/refracted ray whose Ks/Kt weight is below this (0 = off)")
+      ->check(CLI::Range(0.0, 1.0));
   render->add_option("--threads", cmd.threads, "Worker threads for image-parallel (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")

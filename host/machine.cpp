@@ -147,7 +147,8 @@ void mapOntoHypercube(const node::RegionMap& regions, const MachineSettings& mac
 RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings, const MachineSettings& machine,
                            MachineReport* report) {
   const auto start = Clock::now();
-  const core::View view(scene.camera, settings.width, settings.height, settings.sampling);
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
+                        settings.shading.raysPerSample);
   const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
   const bool bspFits = (long long)machine.rows * machine.columns <= (long long)view.samplesX() * view.samplesY();
   if (machine.columns < 1 || machine.rows < 1 || !(machine.balance == Balance::Bsp ? bspFits : gridFits))

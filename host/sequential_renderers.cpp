@@ -28,7 +28,8 @@ void traceRows(const core::View& view, const core::Whitted& shading, const Datab
   core::RayTreeScratch scratch;
   for (int sy = rowBegin; sy < rowEnd; ++sy) {
     for (int sx = 0; sx < view.samplesX(); ++sx)
-      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), frame, counters, scratch);
+      for (int k = 0; k < view.raysPerSample(); ++k)
+        core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy, k), frame, counters, scratch);
     progress.advance(std::uint64_t(view.samplesX()));
   }
 }
@@ -37,7 +38,7 @@ void traceRows(const core::View& view, const core::Whitted& shading, const Datab
 
 RenderResult renderReference(const core::Scene& scene, const RenderSettings& settings) {
   const auto start = Clock::now();
-  const core::View view(scene.camera, settings.width, settings.height, settings.sampling);
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling, settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
   const core::BruteForce database(scene, shading);
   core::Framebuffer frame(view.samplesX(), view.samplesY());
@@ -58,7 +59,7 @@ RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings&
   const auto start = Clock::now();
   std::optional<tbb::global_control> limit;
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
-  const core::View view(scene.camera, settings.width, settings.height, settings.sampling);
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling, settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
   const core::Bvh database(scene, shading);
   core::Framebuffer frame(view.samplesX(), view.samplesY());

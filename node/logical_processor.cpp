@@ -64,15 +64,16 @@ void LogicalProcessor::run() {
 }
 
 bool LogicalProcessor::shootNextPrimary() {
-  if (nextPrimary_ >= area_.count()) return false;
-  const int sx = area_.x0 + int(nextPrimary_ % area_.width());
-  const int sy = area_.y0 + int(nextPrimary_ / area_.width());
+  const int raysPerSample = context_.view.raysPerSample();
+  if (nextPrimary_ >= area_.count() * raysPerSample) return false;
+  const long long sample = nextPrimary_ / raysPerSample;
+  const int k = int(nextPrimary_ % raysPerSample);
+  const int sx = area_.x0 + int(sample % area_.width());
+  const int sy = area_.y0 + int(sample / area_.width());
   ++nextPrimary_;
-  primariesShot_.store(nextPrimary_, std::memory_order_relaxed);
+  if (k + 1 == raysPerSample) primariesShot_.store(sample + 1, std::memory_order_relaxed);
   RayMessage m;
-  m.ray.ray = context_.view.eyeRay(sx, sy);
-  m.ray.sample = context_.view.sampleIndex(sx, sy);
-  m.ray.kind = core::RayKind::Eye;
+  m.ray = core::eyeRayOf(context_.view, sx, sy, k);
   m.tEnter = m.ray.ray.tMin;
   m.destination = std::uint16_t(setup_.id);
   ++stats_.spawned[std::size_t(core::RayKind::Eye)];
@@ -299,7 +300,7 @@ std::size_t LogicalProcessor::backlog() const {
 }
 
 bool LogicalProcessor::passive() const {
-  if (nextPrimary_ < area_.count() || !local_.empty()) return false;
+  if (nextPrimary_ < area_.count() * context_.view.raysPerSample() || !local_.empty()) return false;
   for (const auto& pending : overflow_)
     if (!pending.empty()) return false;
   return true;
