@@ -19,6 +19,7 @@
 #include "host/machine_report.h"
 #include "host/sequential_renderers.h"
 #include "host/stats_report.h"
+#include "host/tradeoff.h"
 
 namespace raycube::host {
 namespace {
@@ -193,6 +194,52 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
   render->get_option("--balls")->excludes("scene");
 }
 
+struct TradeoffCommand {
+  std::string scenePath;
+  int balls = 0;
+  std::string size = "256x256";
+  int runs = 3;
+  std::string csv = "out/tradeoff.csv";
+  std::string plot = "out/tradeoff.png";
+};
+
+// `raycube tradeoff`: the knobs' speed against their error, as a table, CSV and a plot.
+int runTradeoff(const TradeoffCommand& cmd) {
+  RenderCommand sceneCmd;
+  sceneCmd.scenePath = cmd.scenePath;
+  sceneCmd.balls = cmd.balls;
+  const core::Scene scene = loadScene(sceneCmd);
+  RenderSettings base;
+  std::tie(base.width, base.height) = parsePair(cmd.size, "--size", "WxH", core::kMaxNffResolution);
+  base.progress = false;
+  TradeoffOptions options;
+  options.runs = cmd.runs;
+  std::cerr << "rendering the converged reference (depth " << options.referenceDepth << ", "
+            << options.referenceRaysPerSample << " rays per pixel)...\n";
+  const auto rows = measureTradeoff(scene, base, options, [](const TradeoffRow& r) {
+    std::cerr << "  " << r.knob << " " << r.setting << ": " << fmt::format("{:.3f} s", r.seconds) << "\n";
+  });
+  std::cout << tradeoffTable(rows);
+  for (const std::string& path : {cmd.csv, cmd.plot}) {
+    const std::filesystem::path p(path);
+    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  }
+  writeTradeoffCsv(rows, cmd.csv);
+  core::writeImage(tradeoffPlot(rows), cmd.plot);
+  std::cout << "wrote " << cmd.csv << " and " << cmd.plot << '\n';
+  return 0;
+}
+
+void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
+  CLI::App* t = app.add_subcommand("tradeoff", "Measure speed against accuracy for each knob");
+  t->add_option("scene", cmd.scenePath, "NFF scene file (default: the built-in balls scene)")->check(CLI::ExistingFile);
+  t->add_option("--balls", cmd.balls, "Built-in SPD balls scene of this size (1-6)")->check(CLI::Range(1, 6));
+  t->add_option("--size", cmd.size, "Image size WxH");
+  t->add_option("--runs", cmd.runs, "Renders per setting (median time)")->check(CLI::Range(1, 100));
+  t->add_option("--csv", cmd.csv, "Table as CSV");
+  t->add_option("--plot", cmd.plot, "Error against time as a PNG plot");
+}
+
 struct CompareCommand {
   std::string first, second;
 };
@@ -222,6 +269,8 @@ int runCommandLine(int argc, char** argv) {
   addRenderCommand(app, renderCmd);
   CompareCommand compareCmd;
   addCompareCommand(app, compareCmd);
+  TradeoffCommand tradeoffCmd;
+  addTradeoffCommand(app, tradeoffCmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -235,6 +284,7 @@ int runCommandLine(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return runRender(renderCmd);
     if (app.got_subcommand("compare")) return runCompare(compareCmd);
+    if (app.got_subcommand("tradeoff")) return runTradeoff(tradeoffCmd);
   } catch (const CLI::ValidationError& e) {
     std::cerr << "raycube: " << e.what() << '\n';
     return 2;

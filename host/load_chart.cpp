@@ -1,5 +1,7 @@
 #include "host/load_chart.h"
 
+#include "core/image_drawing.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -55,12 +57,7 @@ std::vector<double> normalisedToMax(std::span<const double> values, const char* 
   return normalised;
 }
 
-// Fills the half-open rectangle [x0, x1) x [y0, y1), clipped to the image.
-void fillRect(core::Image& image, int x0, int y0, int x1, int y1, const core::Color& color) {
-  for (int y = std::max(0, y0); y < std::min(image.height, y1); ++y) {
-    for (int x = std::max(0, x0); x < std::min(image.width, x1); ++x) image.at(x, y) = color;
-  }
-}
+using core::fillRect;
 
 }  // namespace
 

@@ -1,0 +1,143 @@
+#include "host/tradeoff.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "core/image_drawing.h"
+#include "host/sequential_renderers.h"
+
+namespace raycube::host {
+namespace {
+
+struct Setting {
+  const char* knob;
+  std::string value;
+  RenderSettings settings;
+};
+
+// Each knob swept from cheap to accurate, the others at the SPD defaults (depth 5, 1 ray, no cut-off).
+std::vector<Setting> sweeps(const RenderSettings& base) {
+  std::vector<Setting> s;
+  for (int depth : {1, 2, 3, 4, 5, 8}) {
+    RenderSettings r = base;
+    r.shading.maxDepth = depth;
+    s.push_back({"depth", std::to_string(depth), r});
+  }
+  for (double w : {0.5, 0.2, 0.1, 0.05, 0.02, 0.0}) {
+    RenderSettings r = base;
+    r.shading.minWeight = w;
+    s.push_back({"min-weight", fmt::format("{:g}", w), r});
+  }
+  for (int spp : {1, 4, 9, 16}) {
+    RenderSettings r = base;
+    r.shading.raysPerSample = spp;
+    s.push_back({"spp", std::to_string(spp), r});
+  }
+  return s;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+std::vector<TradeoffRow> measureTradeoff(const core::Scene& scene, const RenderSettings& base,
+                                         const TradeoffOptions& options,
+                                         const std::function<void(const TradeoffRow&)>& progress) {
+  RenderSettings converged = base;
+  converged.shading.maxDepth = options.referenceDepth;
+  converged.shading.raysPerSample = options.referenceRaysPerSample;
+  converged.shading.minWeight = 0;
+  const core::Image reference = renderImageParallel(scene, converged).image;
+  std::vector<TradeoffRow> rows;
+  RenderSettings defaults = base;
+  defaults.shading = core::ShadingOptions{};
+  for (const Setting& s : sweeps(defaults)) {
+    TradeoffRow row{s.knob, s.value};
+    std::vector<double> times;
+    for (int run = 0; run < std::max(1, options.runs); ++run) {
+      const RenderResult r = renderImageParallel(scene, s.settings);
+      times.push_back(r.preprocessSeconds + r.traceSeconds);
+      if (run == 0) {
+        row.counters = r.counters;
+        const core::ImageDifference d = core::compareImages(r.image, reference);
+        row.rmse = d.rmse;
+        row.psnr = d.psnr;
+        row.maxAbs = d.maxAbs;
+      }
+    }
+    row.seconds = median(times);
+    if (progress) progress(row);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string tradeoffTable(const std::vector<TradeoffRow>& rows) {
+  std::string text =
+      "knob        setting   seconds      eye   reflected  refracted     shadow       rmse   psnr dB    max err\n";
+  for (const TradeoffRow& r : rows)
+    text += fmt::format("{:<11} {:>7} {:>9.4f} {:>8} {:>11} {:>10} {:>10} {:>10.3g} {:>9.2f} {:>10.3g}\n", r.knob,
+                        r.setting, r.seconds, r.counters.of(core::RayKind::Eye), r.counters.of(core::RayKind::Reflected),
+                        r.counters.of(core::RayKind::Refracted), r.counters.of(core::RayKind::Shadow), r.rmse, r.psnr,
+                        r.maxAbs);
+  return text;
+}
+
+void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  out << "knob,setting,seconds,eye_rays,reflected_rays,refracted_rays,shadow_rays,rmse,psnr_db,max_error\n";
+  for (const TradeoffRow& r : rows)
+    out << fmt::format("{},{},{:.6f},{},{},{},{},{:.6g},{:.4f},{:.6g}\n", r.knob, r.setting, r.seconds,
+                       r.counters.of(core::RayKind::Eye), r.counters.of(core::RayKind::Reflected),
+                       r.counters.of(core::RayKind::Refracted), r.counters.of(core::RayKind::Shadow), r.rmse,
+                       std::isinf(r.psnr) ? 999.0 : r.psnr, r.maxAbs);
+  if (!out) throw std::runtime_error("failed writing " + path.string());
+}
+
+core::Image tradeoffPlot(const std::vector<TradeoffRow>& rows) {
+  constexpr int kWidth = 640, kHeight = 400, kMargin = 40;
+  constexpr double kFloor = 1e-4;  // RMSE below this is drawn at the bottom (log scale)
+  core::Image plot = core::Image::filled(kWidth, kHeight, core::Color(1.0));
+  double maxSeconds = 0, maxError = kFloor * 10;
+  for (const TradeoffRow& r : rows) {
+    maxSeconds = std::max(maxSeconds, r.seconds);
+    maxError = std::max(maxError, r.rmse);
+  }
+  const double top = std::log10(maxError), bottom = std::log10(kFloor);
+  auto x = [&](double s) { return kMargin + int((kWidth - 2 * kMargin) * s / std::max(maxSeconds, 1e-9)); };
+  auto y = [&](double e) {
+    const double l = std::log10(std::max(e, kFloor));
+    return kHeight - kMargin - int((kHeight - 2 * kMargin) * (l - bottom) / (top - bottom));
+  };
+  // Axes, and a grid line per decade of error.
+  for (double decade = std::ceil(bottom); decade <= top; decade += 1)
+    core::fillRect(plot, kMargin, y(std::pow(10.0, decade)), kWidth - kMargin, y(std::pow(10.0, decade)) + 1,
+                   core::Color(0.8));
+  core::fillRect(plot, kMargin - 2, kMargin, kMargin, kHeight - kMargin, core::Color(0.0));
+  core::fillRect(plot, kMargin - 2, kHeight - kMargin, kWidth - kMargin, kHeight - kMargin + 2, core::Color(0.0));
+  for (std::size_t k = 0; k < std::size(kKnobs); ++k) {
+    int px = -1, py = -1;
+    for (const TradeoffRow& r : rows) {
+      if (r.knob != kKnobs[k]) continue;
+      const int cx = x(r.seconds), cy = y(r.rmse);
+      if (px >= 0) core::drawLine(plot, px, py, cx, cy, kKnobColors[k]);
+      core::fillRect(plot, cx - 3, cy - 3, cx + 4, cy + 4, kKnobColors[k]);
+      px = cx;
+      py = cy;
+    }
+    // Legend: a square per knob, top right, in the order of kKnobs.
+    core::fillRect(plot, kWidth - kMargin - 60 + 20 * int(k), 10, kWidth - kMargin - 48 + 20 * int(k), 22,
+                   kKnobColors[k]);
+  }
+  return plot;
+}
+
+}  // namespace raycube::host

@@ -1,0 +1,44 @@
+#pragma once
+// `raycube tradeoff`: what each speed/accuracy knob buys and costs. A converged reference (depth 16, many
+// rays per pixel, no cut-off) is rendered first; then each knob is swept with the others at their SPD
+// defaults, and every setting is timed (median of several renders) and compared with the reference.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/trace_stats.h"
+#include "host/render_settings.h"
+
+namespace raycube::host {
+
+struct TradeoffRow {
+  std::string knob;     // "depth", "min-weight", "spp"
+  std::string setting;  // its value
+  double seconds = 0;   // whole render, median
+  core::TraceCounters counters;
+  double rmse = 0, psnr = 0, maxAbs = 0;  // against the converged reference, linear RGB
+};
+
+struct TradeoffOptions {
+  int runs = 3;               // renders per setting; the median time is reported
+  int referenceDepth = 16;
+  int referenceRaysPerSample = 64;
+};
+
+// Renders with the image-parallel renderer (bit-identical to every other mode). `progress` hears each
+// finished setting.
+std::vector<TradeoffRow> measureTradeoff(const core::Scene& scene, const RenderSettings& base,
+                                         const TradeoffOptions& options,
+                                         const std::function<void(const TradeoffRow&)>& progress);
+
+std::string tradeoffTable(const std::vector<TradeoffRow>& rows);
+void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path);
+// Error (RMSE, log scale) against time, one polyline per knob in the colours of kKnobColors.
+core::Image tradeoffPlot(const std::vector<TradeoffRow>& rows);
+inline const char* const kKnobs[] = {"depth", "min-weight", "spp"};
+inline const core::Color kKnobColors[] = {{0.85, 0.2, 0.1}, {0.1, 0.45, 0.85}, {0.2, 0.65, 0.2}};
+
+}  // namespace raycube::host

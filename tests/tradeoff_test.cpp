@@ -1,0 +1,52 @@
+// `raycube tradeoff`: each knob's sweep is measured against a converged reference.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "core/balls.h"
+#include "host/tradeoff.h"
+
+namespace raycube::host {
+namespace {
+
+TEST(Tradeoff, MoreAccurateSettingsComeCloserToTheReference) {
+  const core::Scene scene = core::makeBalls(1);
+  RenderSettings base;
+  base.width = base.height = 24;
+  base.progress = false;
+  TradeoffOptions options;
+  options.runs = 1;
+  options.referenceRaysPerSample = 16;
+  int heard = 0;
+  const auto rows = measureTradeoff(scene, base, options, [&](const TradeoffRow&) { ++heard; });
+  ASSERT_EQ(heard, int(rows.size()));
+  std::map<std::string, std::vector<TradeoffRow>> byKnob;
+  for (const TradeoffRow& r : rows) {
+    EXPECT_GT(r.seconds, 0) << r.knob << " " << r.setting;
+    EXPECT_TRUE(std::isfinite(r.rmse));
+    byKnob[r.knob].push_back(r);
+  }
+  for (const char* knob : kKnobs) EXPECT_GE(byKnob[knob].size(), 4u) << knob;
+  // Deeper trees and more rays per pixel never move away from the converged image.
+  for (const char* knob : {"depth", "spp"})
+    for (std::size_t i = 1; i < byKnob[knob].size(); ++i)
+      EXPECT_LE(byKnob[knob][i].rmse, byKnob[knob][i - 1].rmse + 1e-12) << knob << " " << byKnob[knob][i].setting;
+  EXPECT_GT(byKnob["depth"].front().rmse, byKnob["depth"].back().rmse);
+  EXPECT_GT(byKnob["spp"].back().counters.of(core::RayKind::Eye), byKnob["spp"].front().counters.of(core::RayKind::Eye));
+
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "raycube_tradeoff_test.csv";
+  writeTradeoffCsv(rows, csv);
+  std::ifstream in(csv);
+  int lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  EXPECT_EQ(lines, int(rows.size()) + 1);
+  std::filesystem::remove(csv);
+  const core::Image plot = tradeoffPlot(rows);
+  EXPECT_GT(plot.width, 0);
+  EXPECT_NE(tradeoffTable(rows).find("min-weight"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace raycube::host
