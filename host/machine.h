@@ -1,8 +1,8 @@
 #pragma once
-// The message-passing machine (Priol & Bouatouch section 3): the host partitions the screen into an R x C
-// grid of pixel areas (3.1), prunes the database for each region (3.2 step 1), starts one thread per
-// logical processor, accumulates the contributions they send (3.4, 3.5.1) and stops when the token ring
-// has proved termination (3.6).
+// The message-passing machine (Priol & Bouatouch section 3): the host partitions the screen into pixel
+// areas (an R x C grid, 3.1, or a BSP of equal estimated loads, 3.7.1), prunes the database for each region
+// (3.2 step 1) and for its light volumes (3.7.2), starts one thread per logical processor, accumulates the
+// contributions they send (3.4, 3.5.1) and stops when the token ring has proved termination (3.6).
 #include <vector>
 
 #include "core/scene.h"
