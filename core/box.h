@@ -44,8 +44,8 @@ struct InverseDirection {
 // Robust slab test (Ize, "Robust BVH ray traversal", 2013): the far distance is widened by 2 gamma(3) so
 // rounding never culls a true hit. A NaN from (0 * inf), an origin exactly on the plane of a slab the ray
 // runs parallel to, fails every comparison and leaves [t0, t1] unconstrained by that slab.
-inline bool slabsHit(const Box& box, const Vec3& origin, const InverseDirection& id, double tMin,
-                     double tMax, double& tEnter) {
+inline bool slabsHit(const Box& box, const Vec3& origin, const InverseDirection& id, double tMin, double tMax,
+                     double& tEnter) {
   const Vec3* planes = &box.lo;  // planes[0] = lo, planes[1] = hi
   double t0 = tMin, t1 = tMax;
   for (int a = 0; a < 3; ++a) {

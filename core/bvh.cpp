@@ -166,7 +166,7 @@ double Bvh::transmission(const Ray& ray, TraceCounters& counters, std::vector<Hi
     if (!shading_.transmissive(object)) {
       blocked = true;
       crossed.assign(1, Hit{t, object});  // the blocker, for the caller's shadow cache
-      return false;  // an opaque object: no light, whatever else lies on the way
+      return false;                       // an opaque object: no light, whatever else lies on the way
     }
     crossed.push_back(Hit{t, object});
     return true;

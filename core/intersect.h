@@ -31,9 +31,7 @@ struct Hit {
   std::uint32_t object = UINT32_MAX;
 
   bool found() const { return object != UINT32_MAX; }
-  bool closerThan(const Hit& other) const {
-    return t < other.t || (t == other.t && object < other.object);
-  }
+  bool closerThan(const Hit& other) const { return t < other.t || (t == other.t && object < other.object); }
 };
 
 }  // namespace raycube::core

@@ -35,7 +35,8 @@ double shadowTransmission(const Whitted& shading, const Database& database, cons
   return transmission;
 }
 
-// Sees every ray of the tree once it is traced: where it ended (hit, light, or infinity) and the work it cost.
+// Sees every ray of the tree once it is traced: where it ended (hit, light, or infinity) and the work it
+// cost.
 struct IgnoreRays {
   void operator()(const TracedRay&, double /*tEnd*/, std::uint64_t /*work*/) const {}
 };
@@ -53,7 +54,8 @@ void traceRayTree(const Whitted& shading, const Database& database, const Traced
     const std::uint64_t workBefore = counters.intersectionTests + counters.boxTests;
     double tEnd = ray.ray.tMax;
     if (ray.kind == RayKind::Shadow) {
-      shading.finishShadow(ray, shadowTransmission(shading, database, ray, counters, scratch), scratch.outcome);
+      shading.finishShadow(ray, shadowTransmission(shading, database, ray, counters, scratch),
+                           scratch.outcome);
     } else {
       const Hit hit = database.closestHit(ray.ray, counters);
       tEnd = hit.t;

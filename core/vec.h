@@ -1,7 +1,7 @@
 #pragma once
 // Vectors of the renderer: GLM double precision, one alias so the rest of core reads plainly.
-#include <glm/vec3.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 namespace raycube::core {
 

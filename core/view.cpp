@@ -42,7 +42,8 @@ namespace {
 
 // A uniform number in [0, 1) from (sample, ray, axis): a fixed seed per sample (SplitMix64 finaliser).
 double jitter(std::uint64_t sample, std::uint64_t k, std::uint64_t axis) {
-  std::uint64_t z = (sample * 0x9E3779B97F4A7C15ull) ^ (k * 0xBF58476D1CE4E5B9ull) ^ (axis * 0x94D049BB133111EBull);
+  std::uint64_t z =
+      (sample * 0x9E3779B97F4A7C15ull) ^ (k * 0xBF58476D1CE4E5B9ull) ^ (axis * 0x94D049BB133111EBull);
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   z ^= z >> 31;

@@ -47,7 +47,9 @@ class View {
   // The eye frame: x right, y up, z forward (depth).
   Vec3 toEye(const Vec3& world) const;
   Vec3 directionToEye(const Vec3& direction) const;
-  Vec3 fromEye(const Vec3& eyeFrame) const { return eye_ + eyeFrame.x * right_ + eyeFrame.y * up_ + eyeFrame.z * forward_; }
+  Vec3 fromEye(const Vec3& eyeFrame) const {
+    return eye_ + eyeFrame.x * right_ + eyeFrame.y * up_ + eyeFrame.z * forward_;
+  }
   const Vec3& eye() const { return eye_; }
   double hither() const { return hither_; }
 
@@ -56,8 +58,8 @@ class View {
   Sampling sampling_;
   int samplesX_, samplesY_;
   Vec3 eye_, right_, up_, forward_;
-  double pitch_;        // screen units between adjacent pixel centres
-  double offsetPixels_; // sample sx sits at pixel coordinate sx - offsetPixels_
+  double pitch_;         // screen units between adjacent pixel centres
+  double offsetPixels_;  // sample sx sits at pixel coordinate sx - offsetPixels_
   double hither_;
   int raysPerSample_;
 };

@@ -53,7 +53,8 @@ class Whitted {
   double transmittanceOf(std::uint32_t object) const {
     return scene_.materials[scene_.objects[object].material].transmittance;
   }
-  // The scene has some material with T > 0: shadow rays must multiply transmittances, not stop at the first hit.
+  // The scene has some material with T > 0: shadow rays must multiply transmittances, not stop at the first
+  // hit.
   bool sceneTransmits() const { return sceneTransmits_; }
   int maxDepth() const { return options_.maxDepth; }
   bool worthSpawning(double coeff) const { return coeff * options_.raysPerSample >= options_.minWeight; }

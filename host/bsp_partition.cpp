@@ -14,7 +14,8 @@ struct Splitter {
   std::vector<node::SampleRect> leaves;
 
   // Load on each side of the line `axis` = k, for pieces already inside the rectangle.
-  void sides(const std::vector<ScreenSegment>& pieces, int axis, double k, double& below, double& above) const {
+  void sides(const std::vector<ScreenSegment>& pieces, int axis, double k, double& below,
+             double& above) const {
     below = above = 0;
     for (const ScreenSegment& s : pieces) {
       const double a = axis == 0 ? s.x0 : s.y0, b = axis == 0 ? s.x1 : s.y1;
@@ -58,8 +59,9 @@ struct Splitter {
       double below, above;
       sides(pieces, axis, k, below, above);
       // Equal load per processor on both sides; with no load at all, equal area per processor.
-      const double imbalance = (below + above > 0) ? std::abs(below * second - above * first)
-                                                    : std::abs(double(k - lo) * second - double(hi - k) * first);
+      const double imbalance = (below + above > 0)
+                                   ? std::abs(below * second - above * first)
+                                   : std::abs(double(k - lo) * second - double(hi - k) * first);
       if (imbalance < bestImbalance) {
         bestImbalance = imbalance;
         best = k;
@@ -81,7 +83,8 @@ struct Splitter {
     split(second, p2, clipAll(pieces, second));
   }
 
-  std::vector<ScreenSegment> clipAll(const std::vector<ScreenSegment>& pieces, const node::SampleRect& r) const {
+  std::vector<ScreenSegment> clipAll(const std::vector<ScreenSegment>& pieces,
+                                     const node::SampleRect& r) const {
     std::vector<ScreenSegment> kept;
     ScreenSegment piece;
     for (const ScreenSegment& s : pieces)
@@ -92,8 +95,8 @@ struct Splitter {
 
 }  // namespace
 
-std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors, const LoadSample& sample,
-                                           LoadMetric metric) {
+std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
+                                           const LoadSample& sample, LoadMetric metric) {
   if (processors < 1 || (long long)samplesX * samplesY < processors)
     throw std::invalid_argument("BSP: more processors than samples");
   Splitter splitter{metric, {}};

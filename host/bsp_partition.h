@@ -11,7 +11,7 @@
 
 namespace raycube::host {
 
-std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors, const LoadSample& sample,
-                                           LoadMetric metric);
+std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
+                                           const LoadSample& sample, LoadMetric metric);
 
 }  // namespace raycube::host

@@ -1,8 +1,8 @@
 #include "host/cli.h"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -14,8 +14,8 @@
 #include "core/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
-#include "host/machine.h"
 #include "host/load_chart.h"
+#include "host/machine.h"
 #include "host/machine_report.h"
 #include "host/sequential_renderers.h"
 #include "host/stats_report.h"
@@ -27,8 +27,9 @@ namespace {
 // 16x16 is the paper's 256 processors squared; 64x64 leaves room without exhausting threads.
 constexpr int kMaxProcessorsPerSide = 64;
 
-const std::map<std::string, RenderMode> kModes{
-    {"reference", RenderMode::Reference}, {"image-parallel", RenderMode::ImageParallel}, {"machine", RenderMode::Machine}};
+const std::map<std::string, RenderMode> kModes{{"reference", RenderMode::Reference},
+                                               {"image-parallel", RenderMode::ImageParallel},
+                                               {"machine", RenderMode::Machine}};
 const std::map<std::string, node::LightRayMode> kLightRays{{"messages", node::LightRayMode::Messages},
                                                            {"cone", node::LightRayMode::Cone},
                                                            {"pyramid", node::LightRayMode::Pyramid}};
@@ -72,7 +73,8 @@ std::pair<int, int> parsePair(const std::string& text, const char* what, const c
   char x = 0, extra = 0;
   if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a < 1 ||
       b < 1 || a > limit || b > limit)
-    throw CLI::ValidationError(what, fmt::format("expected {} with both between 1 and {}, got '{}'", form, limit, text));
+    throw CLI::ValidationError(
+        what, fmt::format("expected {} with both between 1 and {}, got '{}'", form, limit, text));
   return {a, b};
 }
 
@@ -84,8 +86,10 @@ core::Scene loadScene(const RenderCommand& cmd) {
 RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const RenderSettings& settings,
                     std::optional<MachineReport>& report) {
   switch (kModes.at(cmd.mode)) {
-    case RenderMode::Reference: return renderReference(scene, settings);
-    case RenderMode::ImageParallel: return renderImageParallel(scene, settings);
+    case RenderMode::Reference:
+      return renderReference(scene, settings);
+    case RenderMode::ImageParallel:
+      return renderImageParallel(scene, settings);
     case RenderMode::Machine: {
       MachineSettings machine = cmd.machine;
       machine.lightRays = kLightRays.at(cmd.lightRays);
@@ -161,10 +165,14 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       ->check(CLI::Range(1, 64));
   render->add_option("--mode", cmd.mode, "machine (message passing) | reference | image-parallel")
       ->transform(CLI::IsMember(keysOf(kModes), CLI::ignore_case));
-  render->add_option("--spp", cmd.spp, "Eye rays per pixel, stratified and jittered with a fixed seed per pixel")
+  render
+      ->add_option("--spp", cmd.spp,
+                   "Eye rays per pixel, stratified and jittered with a fixed seed per pixel")
       ->check(CLI::Range(1, 4096));
-  render->add_option("--min-weight", cmd.minWeight,
-                     "Adaptive depth: spawn no reflected/refracted ray whose Ks/Kt weight is below this (0 = off)")
+  render
+      ->add_option(
+          "--min-weight", cmd.minWeight,
+          "Adaptive depth: spawn no reflected/refracted ray whose Ks/Kt weight is below this (0 = off)")
       ->check(CLI::Range(0.0, 1.0));
   render->add_option("--threads", cmd.threads, "Worker threads for image-parallel (0 = all cores)")
       ->check(CLI::Range(0, 1024));
@@ -174,22 +182,32 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
                      "Logical processors as RxC (rows x columns); with --balance bsp only R*C counts");
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
-  render->add_option("--cell-level", cmd.machine.cellLevel, "Recursive halvings of each pixel area into super-cells")
+  render
+      ->add_option("--cell-level", cmd.machine.cellLevel,
+                   "Recursive halvings of each pixel area into super-cells")
       ->check(CLI::Range(0, 8));
-  render->add_option("--light-rays", cmd.lightRays,
-                     "messages (light rays travel) | cone | pyramid (traced where they start, 3.7.2)")
+  render
+      ->add_option("--light-rays", cmd.lightRays,
+                   "messages (light rays travel) | cone | pyramid (traced where they start, 3.7.2)")
       ->transform(CLI::IsMember(keysOf(kLightRays), CLI::ignore_case));
-  render->add_option("--balance", cmd.balance, "uniform (R x C grid, 3.1) | bsp (equal estimated loads, 3.7.1)")
+  render
+      ->add_option("--balance", cmd.balance, "uniform (R x C grid, 3.1) | bsp (equal estimated loads, 3.7.1)")
       ->transform(CLI::IsMember(keysOf(kBalances), CLI::ignore_case));
-  render->add_option("--load-metric", cmd.loadMetric, "rays (the paper's) | cost (rays weighted by their work)")
+  render
+      ->add_option("--load-metric", cmd.loadMetric, "rays (the paper's) | cost (rays weighted by their work)")
       ->transform(CLI::IsMember(keysOf(kLoadMetrics), CLI::ignore_case));
-  render->add_option("--subsample", cmd.machine.subsampleWindow, "Load estimate: one sub-sampled pixel per WxW window")
+  render
+      ->add_option("--subsample", cmd.machine.subsampleWindow,
+                   "Load estimate: one sub-sampled pixel per WxW window")
       ->check(CLI::Range(1, 1024));
-  render->add_option("-o,--output", cmd.output, "Output image (.exr or .png); default: out/<scene>.exr and .png");
+  render->add_option("-o,--output", cmd.output,
+                     "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
-  render->add_option("--overlay", cmd.overlayPath, "Machine: write the image with regions and their load (.png)");
-  render->add_option("--load-chart", cmd.loadChartPath,
-                     "Machine: figure 15, estimated against actual rays per processor, as a bar chart (.png)");
+  render->add_option("--overlay", cmd.overlayPath,
+                     "Machine: write the image with regions and their load (.png)");
+  render->add_option(
+      "--load-chart", cmd.loadChartPath,
+      "Machine: figure 15, estimated against actual rays per processor, as a bar chart (.png)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
   render->get_option("--balls")->excludes("scene");
 }
@@ -232,7 +250,8 @@ int runTradeoff(const TradeoffCommand& cmd) {
 
 void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
   CLI::App* t = app.add_subcommand("tradeoff", "Measure speed against accuracy for each knob");
-  t->add_option("scene", cmd.scenePath, "NFF scene file (default: the built-in balls scene)")->check(CLI::ExistingFile);
+  t->add_option("scene", cmd.scenePath, "NFF scene file (default: the built-in balls scene)")
+      ->check(CLI::ExistingFile);
   t->add_option("--balls", cmd.balls, "Built-in SPD balls scene of this size (1-6)")->check(CLI::Range(1, 6));
   t->add_option("--size", cmd.size, "Image size WxH");
   t->add_option("--runs", cmd.runs, "Renders per setting (median time)")->check(CLI::Range(1, 100));
@@ -249,13 +268,14 @@ int runCompare(const CompareCommand& cmd) {
   const core::Image a = core::readImage(cmd.first), b = core::readImage(cmd.second);
   const core::ImageDifference d = core::compareImages(a, b);
   const bool identical = core::bitIdentical(a, b);
-  std::cout << fmt::format("rmse {:.3g}, psnr {:.2f} dB, max {:.3g}, pixels over 1/255: {}, {}\n", d.rmse, d.psnr,
-                           d.maxAbs, d.pixelsOver, identical ? "bit-identical" : "different");
+  std::cout << fmt::format("rmse {:.3g}, psnr {:.2f} dB, max {:.3g}, pixels over 1/255: {}, {}\n", d.rmse,
+                           d.psnr, d.maxAbs, d.pixelsOver, identical ? "bit-identical" : "different");
   return identical ? 0 : 1;
 }
 
 void addCompareCommand(CLI::App& app, CompareCommand& cmd) {
-  CLI::App* compare = app.add_subcommand("compare", "Compare two images (EXR or PNG); exit 0 if bit-identical");
+  CLI::App* compare =
+      app.add_subcommand("compare", "Compare two images (EXR or PNG); exit 0 if bit-identical");
   compare->add_option("first", cmd.first, "First image")->required()->check(CLI::ExistingFile);
   compare->add_option("second", cmd.second, "Second image")->required()->check(CLI::ExistingFile);
 }

@@ -16,8 +16,8 @@ class JitterTransport final : public node::Transport {
 
   std::size_t trySend(int neighbour, std::span<const node::RayMessage> messages) override {
     jitter();
-    const std::size_t sent =
-        inner_.trySend(neighbour, messages.subspan(0, std::min<std::size_t>(messages.size(), 1 + random_() % 4)));
+    const std::size_t sent = inner_.trySend(
+        neighbour, messages.subspan(0, std::min<std::size_t>(messages.size(), 1 + random_() % 4)));
     jitter();
     return sent;
   }

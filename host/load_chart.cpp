@@ -1,12 +1,12 @@
 #include "host/load_chart.h"
 
-#include "core/image_drawing.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "core/image_drawing.h"
 
 namespace raycube::host {
 namespace {

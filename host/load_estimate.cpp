@@ -16,7 +16,8 @@ namespace {
 constexpr double kWorkShare = 0.1;
 
 // Projects the part of a ray in front of the eye (z >= zNear) between t0 and t1 (t1 may be infinite).
-bool projectSegment(const core::View& view, const core::Ray& ray, double t1, double zNear, ScreenSegment& out) {
+bool projectSegment(const core::View& view, const core::Ray& ray, double t1, double zNear,
+                    ScreenSegment& out) {
   core::Vec3 o = view.toEye(ray.origin), d = view.directionToEye(ray.direction);
   double t0 = ray.tMin;
   // Keep z(t) = o.z + t d.z >= zNear.
@@ -24,7 +25,10 @@ bool projectSegment(const core::View& view, const core::Ray& ray, double t1, dou
     if (o.z < zNear) return false;
   } else {
     const double tz = (zNear - o.z) / d.z;
-    if (d.z > 0) t0 = std::max(t0, tz); else t1 = std::min(t1, tz);
+    if (d.z > 0)
+      t0 = std::max(t0, tz);
+    else
+      t1 = std::min(t1, tz);
   }
   if (t0 > t1 || (t0 == t1 && t1 != ray.tMin)) return false;  // t0 == t1 == tMin: the ray's origin only
   auto screen = [&](double t, double& x, double& y) {
@@ -53,8 +57,8 @@ bool projectSegment(const core::View& view, const core::Ray& ray, double t1, dou
 
 }  // namespace
 
-LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading, int window,
-                         LoadMetric metric, bool lightRaysWhereTheyStart) {
+LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
+                         int window, LoadMetric metric, bool lightRaysWhereTheyStart) {
   LoadSample sample;
   sample.raysPerSegment = double(window) * window;
   const core::Bvh database(scene, shading);
@@ -75,7 +79,8 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
     for (int wx = 0; wx * window < view.samplesX(); ++wx) {
       const int sx = std::min(view.samplesX() - 1, wx * window + window / 2);
       const int sy = std::min(view.samplesY() - 1, wy * window + window / 2);
-      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), scratchFrame, counters, scratch, record);
+      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), scratchFrame, counters, scratch,
+                         record);
     }
   if (metric == LoadMetric::Cost && !sample.segments.empty()) {
     // A ray counts one, plus its work relative to the mean ray's: every ray costs its message, walk set-up
@@ -95,7 +100,10 @@ bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, doubl
   auto edge = [&](double p, double q) {  // keep where p * t <= q
     if (p == 0) return q >= 0;
     const double r = q / p;
-    if (p < 0) a = std::max(a, r); else b = std::min(b, r);
+    if (p < 0)
+      a = std::max(a, r);
+    else
+      b = std::min(b, r);
     return a <= b;
   };
   if (!(edge(-dx, in.x0 - x0) && edge(dx, x1 - in.x0) && edge(-dy, in.y0 - y0) && edge(dy, y1 - in.y0)))

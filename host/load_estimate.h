@@ -32,8 +32,8 @@ struct LoadSample {
 
 // lightRaysWhereTheyStart: with light cones or pyramids (3.7.2) a light ray is processed only where it
 // starts, so it weighs on that point of the screen instead of along its path.
-LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading, int window,
-                         LoadMetric metric, bool lightRaysWhereTheyStart);
+LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
+                         int window, LoadMetric metric, bool lightRaysWhereTheyStart);
 
 // The part of a segment inside a rectangle (Liang-Barsky); false when none. Its weight is scaled by the kept
 // fraction of length for the cost metric and kept whole for the ray metric (figure 9: a split ray counts

@@ -1,12 +1,11 @@
 #include "host/machine.h"
 
 #include <fmt/format.h>
-
 #include <tbb/parallel_for.h>
 
 #include <chrono>
-#include <latch>
 #include <cmath>
+#include <latch>
 #include <stdexcept>
 #include <thread>
 
@@ -48,7 +47,8 @@ node::LightSources withCorners(node::LightSources sources, const core::View& vie
   sources.eyeBox = sources.eyeBox.padded();
   for (int corner = 0; corner < 8; ++corner) {
     const core::Box& e = sources.eyeBox;
-    const core::Vec3 eyeFrame(corner & 1 ? e.hi.x : e.lo.x, corner & 2 ? e.hi.y : e.lo.y, corner & 4 ? e.hi.z : e.lo.z);
+    const core::Vec3 eyeFrame(corner & 1 ? e.hi.x : e.lo.x, corner & 2 ? e.hi.y : e.lo.y,
+                              corner & 4 ? e.hi.z : e.lo.z);
     sources.corners.push_back(view.fromEye(core::Vec3(eyeFrame.x, -eyeFrame.y, eyeFrame.z)));  // y down -> up
   }
   return sources;
@@ -71,8 +71,8 @@ node::LightSources lightSourcesOf(const node::ColumnSlab& region, const std::vec
 }
 
 // Light rays can also start on the rear parts of objects reaching behind the eye (any processor's).
-node::LightSources rearLightSourcesOf(const std::vector<std::uint32_t>& rear, const std::vector<node::EyeBox>& boxes,
-                                      const core::View& view) {
+node::LightSources rearLightSourcesOf(const std::vector<std::uint32_t>& rear,
+                                      const std::vector<node::EyeBox>& boxes, const core::View& view) {
   node::LightSources sources;
   for (std::uint32_t o : rear) {
     sources.eyeBox.extend(boxes[o].lo);
@@ -86,7 +86,8 @@ node::LightSources rearLightSourcesOf(const std::vector<std::uint32_t>& rear, co
 // pyramids, also the objects its light rays can meet.
 std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core::View& view,
                                            const node::RegionMap& regions, const node::ScreenLines& lines,
-                                           const std::vector<node::EyeBox>& boxes, const MachineSettings& machine) {
+                                           const std::vector<node::EyeBox>& boxes,
+                                           const MachineSettings& machine) {
   std::vector<std::uint32_t> all(boxes.size());
   for (std::uint32_t o = 0; o < all.size(); ++o) all[o] = o;
   std::vector<std::uint32_t> rear;
@@ -97,13 +98,14 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
   if (machine.lightRays != node::LightRayMode::Messages) {
     rearSources = rearLightSourcesOf(rear, boxes, view);
     for (const core::Light& light : scene.lights)
-      rearLightObjects.push_back(node::objectsInLightVolume(machine.lightRays, light.position, rearSources, scene, all));
+      rearLightObjects.push_back(
+          node::objectsInLightVolume(machine.lightRays, light.position, rearSources, scene, all));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
   tbb::parallel_for(0, regions.processors(), [&](int p) {
     const node::SampleRect a = regions.areaOf(p);
-    const node::ColumnSlab region{lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0,
-                                  core::kInfinity};
+    const node::ColumnSlab region{
+        lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0, core::kInfinity};
     node::NodeSetup setup;
     setup.id = p;
     setup.cellLevel = machine.cellLevel;
@@ -144,31 +146,33 @@ void mapOntoHypercube(const node::RegionMap& regions, const MachineSettings& mac
 
 }  // namespace
 
-RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings, const MachineSettings& machine,
-                           MachineReport* report) {
+RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings,
+                           const MachineSettings& machine, MachineReport* report) {
   const auto start = Clock::now();
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
   const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
-  const bool bspFits = (long long)machine.rows * machine.columns <= (long long)view.samplesX() * view.samplesY();
+  const bool bspFits =
+      (long long)machine.rows * machine.columns <= (long long)view.samplesX() * view.samplesY();
   if (machine.columns < 1 || machine.rows < 1 || !(machine.balance == Balance::Bsp ? bspFits : gridFits))
-    throw std::invalid_argument(fmt::format("--procs {}x{}: every processor needs at least one sample (and, on a "
-                                            "uniform grid, one sample row and column) of the {}x{} sample grid",
-                                            machine.rows, machine.columns, view.samplesX(), view.samplesY()));
+    throw std::invalid_argument(
+        fmt::format("--procs {}x{}: every processor needs at least one sample (and, on a "
+                    "uniform grid, one sample row and column) of the {}x{} sample grid",
+                    machine.rows, machine.columns, view.samplesX(), view.samplesY()));
   if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
   if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
   const core::Whitted shading(scene, settings.shading);
   const node::ScreenLines lines(view);
   // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
   const LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
-                                       machine.lightRays != node::LightRayMode::Messages);
+                                        machine.lightRays != node::LightRayMode::Messages);
   const node::RegionMap regions =
       machine.balance == Balance::Bsp
-          ? node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
-                                         machine.loadMetric),
+          ? node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns,
+                                         load, machine.loadMetric),
                             lines)
-          : node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns), evenCuts(view.samplesY(), machine.rows),
-                                  lines);
+          : node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns),
+                                  evenCuts(view.samplesY(), machine.rows), lines);
   std::vector<node::SampleRect> areas;
   for (int p = 0; p < regions.processors(); ++p) areas.push_back(regions.areaOf(p));
   std::vector<node::EyeBox> boxes;
@@ -181,7 +185,8 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   for (int id = 0; id < regions.processors(); ++id) {
     transports.push_back(&interconnect.endpoint(id));
     if (machine.jitterSeed > 0) {
-      jitters.push_back(std::make_unique<JitterTransport>(*transports.back(), machine.jitterSeed * 7919u + unsigned(id)));
+      jitters.push_back(
+          std::make_unique<JitterTransport>(*transports.back(), machine.jitterSeed * 7919u + unsigned(id)));
       transports.back() = jitters.back().get();
     }
   }
@@ -193,7 +198,8 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   std::vector<std::thread> threads;
   for (std::size_t id = 0; id < setups.size(); ++id) {
     threads.emplace_back([&, id] {
-      processors[id] = std::make_unique<node::LogicalProcessor>(context, std::move(setups[id]), *transports[id]);
+      processors[id] =
+          std::make_unique<node::LogicalProcessor>(context, std::move(setups[id]), *transports[id]);
       subdivided.count_down();
       synthesis.wait();
       processors[id]->run();
@@ -227,7 +233,8 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
       // Let blocks pile up a little: one wake-up per batch of blocks, not per block (the host thread shares
       // the two cores with every processor).
       std::this_thread::sleep_for(kHostBatchingPause);
-      queues::waitUntil(channel.doorbell(), [&] { return interconnect.terminated() || channel.anyPending(); });
+      queues::waitUntil(channel.doorbell(),
+                        [&] { return interconnect.terminated() || channel.anyPending(); });
     }
     for (std::thread& t : threads) t.join();
     channel.drain(accumulate);

@@ -22,13 +22,13 @@ enum class Balance : std::uint8_t {
 struct MachineSettings {
   int rows = 4;
   int columns = 4;
-  Balance balance = Balance::Bsp;        // with Bsp only rows x columns (the processor count) matters
-  int subsampleWindow = 8;               // 3.7.1: one sub-sampled pixel per w x w window
+  Balance balance = Balance::Bsp;  // with Bsp only rows x columns (the processor count) matters
+  int subsampleWindow = 8;         // 3.7.1: one sub-sampled pixel per w x w window
   LoadMetric loadMetric = LoadMetric::Cost;
   std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
   int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
-  unsigned jitterSeed = 0;          // tests: > 0 injects random delays around every transport operation
+  unsigned jitterSeed = 0;  // tests: > 0 injects random delays around every transport operation
 };
 
 struct ProcessorReport {
@@ -55,7 +55,7 @@ struct MachineReport {
   std::uint64_t tokenPasses = 0;  // token visits over all processors
 };
 
-RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings, const MachineSettings& machine,
-                           MachineReport* report = nullptr);
+RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings,
+                           const MachineSettings& machine, MachineReport* report = nullptr);
 
 }  // namespace raycube::host

@@ -1,17 +1,19 @@
 #include "host/machine_report.h"
 
-#include "host/load_chart.h"
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "host/load_chart.h"
+
 namespace raycube::host {
 namespace {
 
-std::uint64_t loadOf(const ProcessorReport& p) { return p.node.processed.totalRays(); }
+std::uint64_t loadOf(const ProcessorReport& p) {
+  return p.node.processed.totalRays();
+}
 
 template <class Array>
 std::uint64_t sum(const Array& a) {
@@ -66,27 +68,32 @@ std::string machineTable(const MachineReport& report) {
   std::string text = fmt::format(
       "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, shadow {}; "
       "forwarded {}; refused pushes {}\n",
-      report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes, byKind[0],
-      byKind[1], byKind[2], byKind[3], forwarded, refused);
+      report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes,
+      byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused);
   const LoadBalance balance = loadBalanceOf(report);
-  text += fmt::format("  termination: {} token rounds, {} token passes; hypercube of dimension {}: {} adjacencies, "
-                      "dilation mean {:.2f} max {}\n",
-                      report.probes, report.tokenPasses, report.hypercubeDimension, report.adjacencyEdges,
-                      report.dilationMean, report.dilationMax);
   text += fmt::format(
-      "  load ({}, {} metric, sub-sampling {}x{}): rays processed max/mean {:.2f} min/mean {:.2f}; cost max/mean "
+      "  termination: {} token rounds, {} token passes; hypercube of dimension {}: {} adjacencies, "
+      "dilation mean {:.2f} max {}\n",
+      report.probes, report.tokenPasses, report.hypercubeDimension, report.adjacencyEdges,
+      report.dilationMean, report.dilationMax);
+  text += fmt::format(
+      "  load ({}, {} metric, sub-sampling {}x{}): rays processed max/mean {:.2f} min/mean {:.2f}; cost "
+      "max/mean "
       "{:.2f} min/mean {:.2f}; estimate vs actual Pearson r {:.3f}\n",
       report.settings.balance == Balance::Bsp ? "bsp" : "uniform",
       report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays", report.settings.subsampleWindow,
-      report.settings.subsampleWindow, balance.raysMaxOverMean, balance.raysMinOverMean, balance.costMaxOverMean,
-      balance.costMinOverMean, balance.pearson);
-  text += "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  est/mean  act/mean\n";
+      report.settings.subsampleWindow, balance.raysMaxOverMean, balance.raysMinOverMean,
+      balance.costMaxOverMean, balance.costMinOverMean, balance.pearson);
+  text +=
+      "  node  pixels objects  cells   segments   tests      sent  received  fwd  refused  est/mean  "
+      "act/mean\n";
   for (std::size_t i = 0; i < report.processors.size(); ++i) {
     const node::NodeStats& n = report.processors[i].node;
-    text += fmt::format("  {:>4} {:>7} {:>7} {:>6} {:>10} {:>8} {:>9} {:>9} {:>4} {:>8} {:>9.2f} {:>10.2f}\n", n.id,
-                        n.area.count(), n.objects, n.cells, n.processed.totalRays(), n.processed.intersectionTests,
-                        sum(n.sent), sum(n.received), n.forwarded, n.refusedPushes,
-                        i < balance.estimated.size() ? balance.estimated[i] : 0.0, balance.actualInMetric[i]);
+    text +=
+        fmt::format("  {:>4} {:>7} {:>7} {:>6} {:>10} {:>8} {:>9} {:>9} {:>4} {:>8} {:>9.2f} {:>10.2f}\n",
+                    n.id, n.area.count(), n.objects, n.cells, n.processed.totalRays(),
+                    n.processed.intersectionTests, sum(n.sent), sum(n.received), n.forwarded, n.refusedPushes,
+                    i < balance.estimated.size() ? balance.estimated[i] : 0.0, balance.actualInMetric[i]);
   }
   return text;
 }
@@ -142,20 +149,22 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"loadMetric", report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays"},
           {"subsampleWindow", report.settings.subsampleWindow},
           {"subsampledRays", report.subsampledRays},
-          {"hypercube", {{"dimension", report.hypercubeDimension},
-                         {"nodeOfProcessor", report.hypercubeNode},
-                         {"adjacencyEdges", report.adjacencyEdges},
-                         {"dilationMean", report.dilationMean},
-                         {"dilationMax", report.dilationMax}}},
-          {"figure15", {{"estimatedOverMean", balance.estimated},
-                        {"raysProcessedOverMean", balance.actualRays},
-                        {"costOverMean", balance.actualCost},
-                        {"actualInMetricOverMean", balance.actualInMetric},
-                        {"pearsonEstimateVsActual", balance.pearson},
-                        {"raysMaxOverMean", balance.raysMaxOverMean},
-                        {"raysMinOverMean", balance.raysMinOverMean},
-                        {"costMaxOverMean", balance.costMaxOverMean},
-                        {"costMinOverMean", balance.costMinOverMean}}},
+          {"hypercube",
+           {{"dimension", report.hypercubeDimension},
+            {"nodeOfProcessor", report.hypercubeNode},
+            {"adjacencyEdges", report.adjacencyEdges},
+            {"dilationMean", report.dilationMean},
+            {"dilationMax", report.dilationMax}}},
+          {"figure15",
+           {{"estimatedOverMean", balance.estimated},
+            {"raysProcessedOverMean", balance.actualRays},
+            {"costOverMean", balance.actualCost},
+            {"actualInMetricOverMean", balance.actualInMetric},
+            {"pearsonEstimateVsActual", balance.pearson},
+            {"raysMaxOverMean", balance.raysMaxOverMean},
+            {"raysMinOverMean", balance.raysMinOverMean},
+            {"costMaxOverMean", balance.costMaxOverMean},
+            {"costMinOverMean", balance.costMinOverMean}}},
           {"columns", report.settings.columns},
           {"queueCapacity", report.settings.queueCapacity},
           {"cellLevel", report.settings.cellLevel},

@@ -1,9 +1,8 @@
 #pragma once
 // What the machine measured, per processor: the compact table of the summary, the JSON of --stats, and a
 // picture (--overlay): the image with region borders and each region tinted by its load.
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/image.h"
 #include "host/machine.h"

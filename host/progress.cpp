@@ -6,7 +6,8 @@ namespace raycube::host {
 
 using namespace std::chrono_literals;
 
-Progress::Progress(std::string what, std::uint64_t total, bool enabled) : what_(std::move(what)), total_(total) {
+Progress::Progress(std::string what, std::uint64_t total, bool enabled)
+    : what_(std::move(what)), total_(total) {
   if (enabled && total > 0) reporter_ = std::thread([this] { report(); });
 }
 

@@ -38,7 +38,8 @@ void traceRows(const core::View& view, const core::Whitted& shading, const Datab
 
 RenderResult renderReference(const core::Scene& scene, const RenderSettings& settings) {
   const auto start = Clock::now();
-  const core::View view(scene.camera, settings.width, settings.height, settings.sampling, settings.shading.raysPerSample);
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
+                        settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
   const core::BruteForce database(scene, shading);
   core::Framebuffer frame(view.samplesX(), view.samplesY());
@@ -59,7 +60,8 @@ RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings&
   const auto start = Clock::now();
   std::optional<tbb::global_control> limit;
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
-  const core::View view(scene.camera, settings.width, settings.height, settings.sampling, settings.shading.raysPerSample);
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
+                        settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
   const core::Bvh database(scene, shading);
   core::Framebuffer frame(view.samplesX(), view.samplesY());
@@ -72,9 +74,10 @@ RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings&
   {
     Progress progress("image-parallel", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
     // Each sample row belongs to exactly one task, so frame buffer slots never have two writers.
-    tbb::parallel_for(tbb::blocked_range<int>(0, view.samplesY(), 4), [&](const tbb::blocked_range<int>& rows) {
-      traceRows(view, shading, database, rows.begin(), rows.end(), frame, counters.local(), progress);
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, view.samplesY(), 4), [&](const tbb::blocked_range<int>& rows) {
+          traceRows(view, shading, database, rows.begin(), rows.end(), frame, counters.local(), progress);
+        });
   }
   counters.combine_each([&](const core::TraceCounters& c) { result.counters += c; });
   result.image = frame.resolve(view);

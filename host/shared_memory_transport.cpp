@@ -17,7 +17,8 @@ std::vector<queues::Doorbell*> rawBells(const std::vector<std::unique_ptr<queues
 
 class SharedMemoryMachine::Endpoint final : public node::Transport {
  public:
-  Endpoint(SharedMemoryMachine& machine, int id) : machine_(machine), id_(id), sender_(machine.channel_.sender(id)) {
+  Endpoint(SharedMemoryMachine& machine, int id)
+      : machine_(machine), id_(id), sender_(machine.channel_.sender(id)) {
     for (int n : machine.regions_.neighbours(id)) incoming_.push_back(machine.queue(n, id));
   }
 
@@ -63,7 +64,9 @@ class SharedMemoryMachine::Endpoint final : public node::Transport {
     machine_.channel_.doorbell().ring();
   }
   bool terminated() const override { return machine_.terminated(); }
-  void waitUntil(const std::function<bool()>& ready) override { queues::waitUntil(*machine_.bells_[id_], ready, queues::WaitPolicy{4, 8}); }
+  void waitUntil(const std::function<bool()>& ready) override {
+    queues::waitUntil(*machine_.bells_[id_], ready, queues::WaitPolicy{4, 8});
+  }
 
  private:
   SharedMemoryMachine& machine_;
@@ -94,7 +97,9 @@ SharedMemoryMachine::SharedMemoryMachine(const node::RegionMap& regions, std::si
 
 SharedMemoryMachine::~SharedMemoryMachine() = default;
 
-node::Transport& SharedMemoryMachine::endpoint(int processor) { return *endpoints_[processor]; }
+node::Transport& SharedMemoryMachine::endpoint(int processor) {
+  return *endpoints_[processor];
+}
 
 RayQueue* SharedMemoryMachine::queue(int from, int to) const {
   const std::vector<int>& n = regions_.neighbours(from);

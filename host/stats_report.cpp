@@ -16,15 +16,16 @@ double megaRaysPerSecond(const RenderResult& r) {
 
 std::string summaryText(const core::Scene& scene, const RenderResult& result) {
   const core::TraceCounters& c = result.counters;
-  std::string text = fmt::format("scene {} ({} objects, {} lights), {}x{}, mode {} ({} workers)\n", scene.name,
-                                 scene.objects.size(), scene.lights.size(), result.image.width,
+  std::string text = fmt::format("scene {} ({} objects, {} lights), {}x{}, mode {} ({} workers)\n",
+                                 scene.name, scene.objects.size(), scene.lights.size(), result.image.width,
                                  result.image.height, result.mode, result.workers);
-  text += fmt::format("  preprocessing {:.3f} s, tracing {:.3f} s\n", result.preprocessSeconds, result.traceSeconds);
-  text += fmt::format("  rays: eye {}, reflected {}, refracted {}, shadow {}, total {}\n", c.of(core::RayKind::Eye),
-                      c.of(core::RayKind::Reflected), c.of(core::RayKind::Refracted), c.of(core::RayKind::Shadow),
-                      c.totalRays());
-  text += fmt::format("  intersection tests {}, box tests {}, {:.2f} Mrays/s\n", c.intersectionTests, c.boxTests,
-                      megaRaysPerSecond(result));
+  text += fmt::format("  preprocessing {:.3f} s, tracing {:.3f} s\n", result.preprocessSeconds,
+                      result.traceSeconds);
+  text += fmt::format("  rays: eye {}, reflected {}, refracted {}, shadow {}, total {}\n",
+                      c.of(core::RayKind::Eye), c.of(core::RayKind::Reflected),
+                      c.of(core::RayKind::Refracted), c.of(core::RayKind::Shadow), c.totalRays());
+  text += fmt::format("  intersection tests {}, box tests {}, {:.2f} Mrays/s\n", c.intersectionTests,
+                      c.boxTests, megaRaysPerSecond(result));
   if (c.nonFinite > 0) text += fmt::format("  WARNING: {} contributions were NaN or infinite\n", c.nonFinite);
   return text;
 }

@@ -1,9 +1,8 @@
 #pragma once
 // The final summary on stdout and the same numbers as JSON (--stats).
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/scene.h"
 #include "host/render_result.h"

@@ -81,12 +81,13 @@ std::vector<TradeoffRow> measureTradeoff(const core::Scene& scene, const RenderS
 
 std::string tradeoffTable(const std::vector<TradeoffRow>& rows) {
   std::string text =
-      "knob        setting   seconds      eye   reflected  refracted     shadow       rmse   psnr dB    max err\n";
+      "knob        setting   seconds      eye   reflected  refracted     shadow       rmse   psnr dB    max "
+      "err\n";
   for (const TradeoffRow& r : rows)
-    text += fmt::format("{:<11} {:>7} {:>9.4f} {:>8} {:>11} {:>10} {:>10} {:>10.3g} {:>9.2f} {:>10.3g}\n", r.knob,
-                        r.setting, r.seconds, r.counters.of(core::RayKind::Eye), r.counters.of(core::RayKind::Reflected),
-                        r.counters.of(core::RayKind::Refracted), r.counters.of(core::RayKind::Shadow), r.rmse, r.psnr,
-                        r.maxAbs);
+    text += fmt::format("{:<11} {:>7} {:>9.4f} {:>8} {:>11} {:>10} {:>10} {:>10.3g} {:>9.2f} {:>10.3g}\n",
+                        r.knob, r.setting, r.seconds, r.counters.of(core::RayKind::Eye),
+                        r.counters.of(core::RayKind::Reflected), r.counters.of(core::RayKind::Refracted),
+                        r.counters.of(core::RayKind::Shadow), r.rmse, r.psnr, r.maxAbs);
   return text;
 }
 
@@ -122,7 +123,8 @@ core::Image tradeoffPlot(const std::vector<TradeoffRow>& rows) {
     core::fillRect(plot, kMargin, y(std::pow(10.0, decade)), kWidth - kMargin, y(std::pow(10.0, decade)) + 1,
                    core::Color(0.8));
   core::fillRect(plot, kMargin - 2, kMargin, kMargin, kHeight - kMargin, core::Color(0.0));
-  core::fillRect(plot, kMargin - 2, kHeight - kMargin, kWidth - kMargin, kHeight - kMargin + 2, core::Color(0.0));
+  core::fillRect(plot, kMargin - 2, kHeight - kMargin, kWidth - kMargin, kHeight - kMargin + 2,
+                 core::Color(0.0));
   for (std::size_t k = 0; k < std::size(kKnobs); ++k) {
     int px = -1, py = -1;
     for (const TradeoffRow& r : rows) {

@@ -23,7 +23,7 @@ struct TradeoffRow {
 };
 
 struct TradeoffOptions {
-  int runs = 3;               // renders per setting; the median time is reported
+  int runs = 3;  // renders per setting; the median time is reported
   int referenceDepth = 16;
   int referenceRaysPerSample = 64;
 };

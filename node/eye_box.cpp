@@ -15,7 +15,9 @@ core::Vec3 eyeFrame(const core::View& view, const core::Vec3& world) {
   return e;
 }
 
-double widen(double v, double magnitude) { return core::kCellMarginRelative * (std::abs(v) + magnitude); }
+double widen(double v, double magnitude) {
+  return core::kCellMarginRelative * (std::abs(v) + magnitude);
+}
 
 }  // namespace
 
@@ -32,9 +34,9 @@ EyeBox eyeBoxOf(const core::Object& object, const core::View& view) {
   } else {
     const core::Box world = core::boundsOf(object);
     for (int corner = 0; corner < 8; ++corner)
-      box.extend(eyeFrame(view, core::Vec3(corner & 1 ? world.hi.x : world.lo.x,
-                                           corner & 2 ? world.hi.y : world.lo.y,
-                                           corner & 4 ? world.hi.z : world.lo.z)));
+      box.extend(eyeFrame(
+          view, core::Vec3(corner & 1 ? world.hi.x : world.lo.x, corner & 2 ? world.hi.y : world.lo.y,
+                           corner & 4 ? world.hi.z : world.lo.z)));
   }
   const core::Vec3 size = box.extent();
   const double magnitude = std::max({size.x, size.y, size.z});
@@ -46,7 +48,9 @@ EyeBox eyeBoxOf(const core::Object& object, const core::View& view) {
   return eye;
 }
 
-bool reachesBehindEye(const EyeBox& box) { return box.lo.z <= 0; }
+bool reachesBehindEye(const EyeBox& box) {
+  return box.lo.z <= 0;
+}
 
 bool mayTouch(const EyeBox& box, const ColumnSlab& slab) {
   const double zLo = std::max(box.lo.z, slab.zLo), zHi = std::min(box.hi.z, slab.zHi);

@@ -51,8 +51,9 @@ bool buildPyramid(const Vec3& light, const LightSources& sources, Pyramid& out) 
     p.yMin = std::min(p.yMin, l.y / l.z);
     p.yMax = std::max(p.yMax, l.y / l.z);
   }
-  const double slack = core::kCellMarginRelative * (1 + std::max({std::abs(p.xMin), std::abs(p.xMax),
-                                                                    std::abs(p.yMin), std::abs(p.yMax)}));
+  const double slack =
+      core::kCellMarginRelative *
+      (1 + std::max({std::abs(p.xMin), std::abs(p.xMax), std::abs(p.yMin), std::abs(p.yMax)}));
   p.xMin -= slack;
   p.yMin -= slack;
   p.xMax += slack;
@@ -115,8 +116,9 @@ bool sphereMayMeetCone(const Vec3& centre, double r, const Cone& cone) {
 
 }  // namespace
 
-std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::Vec3& light, const LightSources& sources,
-                                                const core::Scene& scene, const std::vector<std::uint32_t>& candidates) {
+std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::Vec3& light,
+                                                const LightSources& sources, const core::Scene& scene,
+                                                const std::vector<std::uint32_t>& candidates) {
   if (sources.eyeBox.empty() || mode == LightRayMode::Messages) return {};
   std::vector<std::uint32_t> kept;
   if (mode == LightRayMode::Pyramid) {

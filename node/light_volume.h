@@ -21,7 +21,8 @@ struct LightSources {
 
 // Objects (indices into the scene, from `candidates`) the segments from any point of `sources` to `light`
 // may meet. Conservative; every candidate when the light lies among the sources (the volume degenerates).
-std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::Vec3& light, const LightSources& sources,
-                                                const core::Scene& scene, const std::vector<std::uint32_t>& candidates);
+std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::Vec3& light,
+                                                const LightSources& sources, const core::Scene& scene,
+                                                const std::vector<std::uint32_t>& candidates);
 
 }  // namespace raycube::node

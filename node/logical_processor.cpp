@@ -159,8 +159,8 @@ void LogicalProcessor::evaluate(RayMessage m, bool primary) {
     }
     int column, row;
     if (primary) {
-      cells_.locateSample(int(ray.sample % context_.view.samplesX()), int(ray.sample / context_.view.samplesX()),
-                          column, row);
+      cells_.locateSample(int(ray.sample % context_.view.samplesX()),
+                          int(ray.sample / context_.view.samplesX()), column, row);
     } else {
       cells_.locate(er, t, column, row);
     }
@@ -174,7 +174,8 @@ void LogicalProcessor::evaluate(RayMessage m, bool primary) {
     }
     m.tEnter = exit.t;
     m.attenuation = attenuation;
-    m.destination = std::uint16_t(context_.regions.ownerBeyond(setup_.id, er, exit.t, exit.sStep, exit.qStep));
+    m.destination =
+        std::uint16_t(context_.regions.ownerBeyond(setup_.id, er, exit.t, exit.sStep, exit.qStep));
     return send(m);
   }
 }
@@ -251,7 +252,8 @@ void LogicalProcessor::send(RayMessage m) {
 }
 
 std::size_t LogicalProcessor::slotOf(int neighbour) const {
-  return std::size_t(std::lower_bound(neighbours_.begin(), neighbours_.end(), neighbour) - neighbours_.begin());
+  return std::size_t(std::lower_bound(neighbours_.begin(), neighbours_.end(), neighbour) -
+                     neighbours_.begin());
 }
 
 void LogicalProcessor::countSent(int neighbour, const RayMessage& m) {

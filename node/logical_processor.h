@@ -8,12 +8,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/bvh.h"
 #include "core/intersect.h"
+#include "core/ray_tree.h"
 #include "core/trace_stats.h"
 #include "core/view.h"
 #include "core/whitted.h"
-#include "core/bvh.h"
-#include "core/ray_tree.h"
 #include "node/light_volume.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
@@ -55,18 +55,18 @@ struct NodeStats {
   std::size_t lightObjects = 0;       // objects held for light rays (summed over lights)
   std::size_t extraLightObjects = 0;  // of those, objects not already in the region's cells
   std::uint64_t lightRaysTracedLocally = 0;
-  core::TraceCounters processed;                 // ray segments evaluated here, by kind; tests; cell steps
-  std::array<std::uint64_t, core::kRayKinds> spawned{};   // rays created here (eye rays and shading)
-  std::array<std::uint64_t, core::kRayKinds> finished{};  // rays whose evaluation ended here
+  core::TraceCounters processed;  // ray segments evaluated here, by kind; tests; cell steps
+  std::array<std::uint64_t, core::kRayKinds> spawned{};         // rays created here (eye rays and shading)
+  std::array<std::uint64_t, core::kRayKinds> finished{};        // rays whose evaluation ended here
   std::array<std::uint64_t, core::kRayKinds> messagesByKind{};  // rays sent to a neighbour, by kind
   std::array<std::uint64_t, kFaces> sent{}, received{};
-  std::uint64_t forwarded = 0;       // messages passed on towards a non-adjacent destination (hops)
-  std::uint64_t refusedPushes = 0;   // sends that found the neighbour's FIFO full
+  std::uint64_t forwarded = 0;      // messages passed on towards a non-adjacent destination (hops)
+  std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
   std::uint64_t overflowHighWater = 0;
-  double blockedSeconds = 0;         // idle while holding rays its full neighbours would not take
-  double idleSeconds = 0;            // asleep with nothing to do
+  double blockedSeconds = 0;  // idle while holding rays its full neighbours would not take
+  double idleSeconds = 0;     // asleep with nothing to do
   std::uint64_t tokenVisits = 0;
-  std::uint32_t probes = 0;          // node 0: token rounds started
+  std::uint32_t probes = 0;  // node 0: token rounds started
 };
 
 class LogicalProcessor {
@@ -107,9 +107,9 @@ class LogicalProcessor {
   std::vector<core::Bvh> rearLightVolumes_;  // per light, for light rays starting behind the eye
   long long nextPrimary_ = 0;
   std::atomic<long long> primariesShot_{0};
-  std::vector<RayMessage> local_;                  // rays spawned here, still to evaluate here
-  const std::vector<int>& neighbours_;               // processors across this region's faces
-  std::vector<OverflowList<RayMessage>> overflow_;   // per neighbour: rays its full FIFO refused
+  std::vector<RayMessage> local_;                   // rays spawned here, still to evaluate here
+  const std::vector<int>& neighbours_;              // processors across this region's faces
+  std::vector<OverflowList<RayMessage>> overflow_;  // per neighbour: rays its full FIFO refused
   std::vector<RayMessage> inbox_;
   core::RayOutcome outcome_;
   // Mailboxes: an object met again in a later cell of the same ray is not tested again. The cached t is

@@ -15,18 +15,22 @@ inline constexpr int kFaces = 4;
 // The face of the neighbour a ray arrives through when it leaves through `face`.
 inline Face opposite(Face face) {
   switch (face) {
-    case Face::Left: return Face::Right;
-    case Face::Right: return Face::Left;
-    case Face::Up: return Face::Down;
-    case Face::Down: return Face::Up;
+    case Face::Left:
+      return Face::Right;
+    case Face::Right:
+      return Face::Left;
+    case Face::Up:
+      return Face::Down;
+    case Face::Down:
+      return Face::Up;
   }
   return face;
 }
 
 struct RayMessage {
   core::TracedRay ray;
-  double tEnter = 0;          // the ray's interval continues from here in the receiving region
-  double attenuation = 1;     // shadow rays: product of T over objects crossed so far, in t order
+  double tEnter = 0;              // the ray's interval continues from here in the receiving region
+  double attenuation = 1;         // shadow rays: product of T over objects crossed so far, in t order
   std::uint16_t destination = 0;  // processor that owns the region the ray enters
   std::uint8_t face = 0;          // face of the receiver it arrives through (statistics)
   std::uint8_t hops = 0;          // forwardings on the way (non-adjacent destinations)

@@ -25,8 +25,8 @@ enum class WalkResult : std::uint8_t { Stopped, Finished, Exited };
 class RegionCells {
  public:
   // objects: indices into the scene with their eye boxes; only those touching the region are kept.
-  RegionCells(const SampleRect& area, const ScreenLines& lines, int level, const std::vector<std::uint32_t>& objects,
-              const std::vector<EyeBox>& eyeBoxes);
+  RegionCells(const SampleRect& area, const ScreenLines& lines, int level,
+              const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& eyeBoxes);
 
   // Walks [t, tEnd) from the column containing the ray at t (or the given sample's column for eye rays),
   // calling visit(tEnter, tExit, objectIndices) for every non-empty cell interval, in t order, until visit
@@ -44,7 +44,7 @@ class RegionCells {
 
  private:
   struct Column {
-    std::vector<double> depthSplits;                   // ascending; cell k is [split k-1, split k)
+    std::vector<double> depthSplits;                      // ascending; cell k is [split k-1, split k)
     std::vector<std::vector<std::uint32_t>> cellObjects;  // depthSplits.size() + 1 cells
   };
   const Column& column(int i, int j) const { return columns_[std::size_t(j) * columnsX_ + i]; }
@@ -67,10 +67,12 @@ WalkResult RegionCells::walk(const EyeFrameRay& ray, double t, double tEnd, int 
   for (;;) {
     // The column's exit: the face ahead along s, along q, or the end of the interval. A crossing computed
     // behind t (rounding) leaves the column at once with an empty interval.
-    const double tS = sDir > 0 ? ray.planeCrossing(0, bounds_[0][i + 1])
-                    : sDir < 0 ? ray.planeCrossing(0, bounds_[0][i]) : core::kInfinity;
-    const double tQ = qDir > 0 ? ray.planeCrossing(1, bounds_[1][j + 1])
-                    : qDir < 0 ? ray.planeCrossing(1, bounds_[1][j]) : core::kInfinity;
+    const double tS = sDir > 0   ? ray.planeCrossing(0, bounds_[0][i + 1])
+                      : sDir < 0 ? ray.planeCrossing(0, bounds_[0][i])
+                                 : core::kInfinity;
+    const double tQ = qDir > 0   ? ray.planeCrossing(1, bounds_[1][j + 1])
+                      : qDir < 0 ? ray.planeCrossing(1, bounds_[1][j])
+                                 : core::kInfinity;
     const double tColumn = std::max(t, std::min({tS, tQ, tEnd}));
     const Column& col = column(i, j);
     // Depth partitioning: walk the column's cells in z order.

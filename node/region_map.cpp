@@ -22,7 +22,8 @@ RegionMap::RegionMap(std::vector<SampleRect> areas, const ScreenLines& lines, in
       samplesX_(lines.samples(0)),
       samplesY_(lines.samples(1)),
       gridColumns_(gridColumns) {
-  if (areas_.empty() || areas_.size() > UINT16_MAX) throw std::invalid_argument("RegionMap: bad processor count");
+  if (areas_.empty() || areas_.size() > UINT16_MAX)
+    throw std::invalid_argument("RegionMap: bad processor count");
   owner_.assign(std::size_t(samplesX_) * samplesY_, UINT16_MAX);
   for (std::size_t id = 0; id < areas_.size(); ++id) {
     const SampleRect& a = areas_[id];
@@ -77,7 +78,10 @@ RegionMap RegionMap::grid(const std::vector<int>& columnStarts, const std::vecto
 int RegionMap::sampleIndex(int axis, double value, int lo, int hi) const {
   while (hi - lo > 1) {
     const int mid = (lo + hi) / 2;
-    if (lines_->at(axis, mid) <= value) lo = mid; else hi = mid;
+    if (lines_->at(axis, mid) <= value)
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }

@@ -32,7 +32,8 @@ class RegionMap {
   bool holds(int id, const EyeFrameRay& ray, double t) const {
     const SampleRect& a = areas_[id];
     const double s = ray.screenAt(0, t), q = ray.screenAt(1, t);
-    return s >= lines_->at(0, a.x0) && s < lines_->at(0, a.x1) && q >= lines_->at(1, a.y0) && q < lines_->at(1, a.y1);
+    return s >= lines_->at(0, a.x0) && s < lines_->at(0, a.x1) && q >= lines_->at(1, a.y0) &&
+           q < lines_->at(1, a.y1);
   }
   // The processor a ray enters when it leaves region `id` at t through the faces (sStep, qStep).
   int ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, int qStep) const;
@@ -50,10 +51,10 @@ class RegionMap {
   std::vector<SampleRect> areas_;
   const ScreenLines* lines_;
   int samplesX_, samplesY_;
-  std::vector<std::uint16_t> owner_;           // per sample
+  std::vector<std::uint16_t> owner_;  // per sample
   std::vector<std::vector<int>> neighbours_;
-  int gridColumns_ = 0;                        // > 0: a uniform grid, routed along rows then columns
-  std::vector<std::uint16_t> nextHop_;         // otherwise: P x P next hops from breadth-first searches
+  int gridColumns_ = 0;                 // > 0: a uniform grid, routed along rows then columns
+  std::vector<std::uint16_t> nextHop_;  // otherwise: P x P next hops from breadth-first searches
 };
 
 }  // namespace raycube::node

@@ -1,7 +1,8 @@
 #pragma once
 // The one interface between a node program and the rest of the machine (Priol & Bouatouch 3.5): rays to
-// the neighbours across its faces (one FIFO per neighbour, 3.7.1 figure 10), rays from neighbours, contributions to the host, the termination token.
-// The node never sees how these travel; shared-memory FIFOs are one implementation, MPI could be another.
+// the neighbours across its faces (one FIFO per neighbour, 3.7.1 figure 10), rays from neighbours,
+// contributions to the host, the termination token. The node never sees how these travel; shared-memory FIFOs
+// are one implementation, MPI could be another.
 #include <cstddef>
 #include <cstdint>
 #include <functional>

@@ -27,11 +27,13 @@ MachineSettings grid(int rows, int columns, std::size_t capacity) {
   return m;
 }
 
-void expectEveryModeMatches(const core::Scene& scene, const RenderSettings& settings, const RenderResult& reference) {
+void expectEveryModeMatches(const core::Scene& scene, const RenderSettings& settings,
+                            const RenderResult& reference) {
   RenderSettings threads = settings;
   for (int t : {1, 2}) {
     threads.threads = t;
-    EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, threads).image, reference.image)) << t << " threads";
+    EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, threads).image, reference.image))
+        << t << " threads";
   }
   MachineSettings bsp;
   bsp.rows = 1;

@@ -18,7 +18,6 @@
 #include "core/image.h"
 #include "host/sequential_renderers.h"
 
-
 namespace raycube::host {
 namespace {
 

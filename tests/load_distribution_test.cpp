@@ -20,7 +20,8 @@ LoadSample randomSegments(int count, double w, double h, unsigned seed) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> x(0, w), y(0, h);
   LoadSample sample;
-  for (int i = 0; i < count; ++i) sample.segments.push_back(ScreenSegment{x(random), y(random), x(random), y(random), 1.0});
+  for (int i = 0; i < count; ++i)
+    sample.segments.push_back(ScreenSegment{x(random), y(random), x(random), y(random), 1.0});
   return sample;
 }
 
@@ -47,7 +48,8 @@ TEST(Bsp, TilesTheScreenForAnyProcessorCount) {
 // With the load concentrated on one side, the BSP gives that side small areas.
 TEST(Bsp, FollowsTheLoad) {
   LoadSample sample;
-  for (int i = 0; i < 1000; ++i) sample.segments.push_back(ScreenSegment{10.0 + i % 7, 10.0 + i % 11, 10.5 + i % 7, 10.5 + i % 11, 1});
+  for (int i = 0; i < 1000; ++i)
+    sample.segments.push_back(ScreenSegment{10.0 + i % 7, 10.0 + i % 11, 10.5 + i % 7, 10.5 + i % 11, 1});
   sample.segments.push_back(ScreenSegment{90, 90, 91, 91, 1});
   const auto areas = bspPartition(100, 100, 4, sample, LoadMetric::Rays);
   const std::vector<double> loads = estimateLoads(areas, sample, LoadMetric::Rays);
@@ -93,13 +95,15 @@ TEST(LoadDistribution, EveryCombinationMatchesTheReference) {
   const std::vector<int> counts = sanitized() ? std::vector<int>{5, 16} : std::vector<int>{4, 5, 16, 32, 64};
   for (int p : counts)
     for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost})
-      for (node::LightRayMode lights : {node::LightRayMode::Messages, node::LightRayMode::Cone, node::LightRayMode::Pyramid})
+      for (node::LightRayMode lights :
+           {node::LightRayMode::Messages, node::LightRayMode::Cone, node::LightRayMode::Pyramid})
         for (std::size_t capacity : {std::size_t(1), std::size_t(128)}) {
           const std::string label = "bsp " + std::to_string(p) + " metric " + std::to_string(int(metric)) +
-                                    " lights " + std::to_string(int(lights)) + " capacity " + std::to_string(capacity);
+                                    " lights " + std::to_string(int(lights)) + " capacity " +
+                                    std::to_string(capacity);
           MachineReport report;
-          const RenderResult result =
-              renderMachineWatched(scene, settings, bspMachine(p, metric, 4, lights, capacity), report, label);
+          const RenderResult result = renderMachineWatched(
+              scene, settings, bspMachine(p, metric, 4, lights, capacity), report, label);
           EXPECT_TRUE(core::bitIdentical(result.image, reference.image)) << label;
           EXPECT_EQ(report.contributionsAccumulated, reference.counters.contributions) << label;
           EXPECT_EQ(int(report.processors.size()), p) << label;
@@ -131,7 +135,8 @@ TEST(LoadDistribution, BspBalancesBetterThanTheUniformGrid) {
   MachineSettings u;
   u.balance = Balance::Uniform;
   renderMachine(scene, settingsFor(128), u, &uniform);
-  renderMachine(scene, settingsFor(128), bspMachine(16, LoadMetric::Rays, 2, node::LightRayMode::Pyramid), &bsp);
+  renderMachine(scene, settingsFor(128), bspMachine(16, LoadMetric::Rays, 2, node::LightRayMode::Pyramid),
+                &bsp);
   const LoadBalance bu = loadBalanceOf(uniform), bb = loadBalanceOf(bsp);
   EXPECT_LT(bb.raysMaxOverMean, bu.raysMaxOverMean);
   EXPECT_LE(bb.raysMaxOverMean, 1.15);
@@ -145,7 +150,8 @@ TEST(LoadDistribution, CostMetricKeepsRaysProcessedWithinFifteenPercent) {
   const core::Scene scene = core::makeBalls(2);
   for (int p : {16, 32}) {
     MachineReport report;
-    renderMachine(scene, settingsFor(128), bspMachine(p, LoadMetric::Cost, 2, node::LightRayMode::Pyramid), &report);
+    renderMachine(scene, settingsFor(128), bspMachine(p, LoadMetric::Cost, 2, node::LightRayMode::Pyramid),
+                  &report);
     const LoadBalance b = loadBalanceOf(report);
     EXPECT_LE(b.raysMaxOverMean, 1.15) << p << " processors";
     EXPECT_GE(b.raysMinOverMean, 0.85) << p << " processors";

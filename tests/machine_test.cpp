@@ -3,7 +3,6 @@
 // every contribution reaches the host, eye rays never leave their processor (3.1), and the space behind
 // the eye plane, which no pyramid covers, is traced too.
 #include "host/machine.h"
-#include "machine_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -25,6 +24,7 @@
 #include "core/nff_reader.h"
 #include "core/view.h"
 #include "host/sequential_renderers.h"
+#include "machine_test_support.h"
 #include "node/eye_box.h"
 
 namespace raycube::host {
@@ -156,7 +156,8 @@ TEST(MachineTest, LightConesAndPyramidsDeleteLightRayMessagesAndKeepTheImage) {
     for (node::LightRayMode mode : {node::LightRayMode::Cone, node::LightRayMode::Pyramid}) {
       for (Grid g : std::vector<Grid>{{1, 1}, {4, 4}, {3, 5}}) {
         for (std::size_t capacity : {std::size_t(1), std::size_t(128)}) {
-          const std::string label = std::string(name) + (mode == node::LightRayMode::Cone ? " cone " : " pyramid ") +
+          const std::string label = std::string(name) +
+                                    (mode == node::LightRayMode::Cone ? " cone " : " pyramid ") +
                                     gridName(g) + " capacity " + std::to_string(capacity);
           MachineReport report;
           const RenderResult result =
@@ -188,7 +189,8 @@ TEST(MachineTest, LightAmongTheObjectsSendsLightRaysOnlyAsMessages) {
   for (node::LightRayMode mode : {node::LightRayMode::Messages, node::LightRayMode::Pyramid}) {
     MachineReport report;
     const std::string label = std::string("lamp among balls ") + (k == 0 ? "messages" : "pyramid");
-    const RenderResult result = renderMachineWatched(scene, settings, machineFor({4, 4}, 8, mode), report, label);
+    const RenderResult result =
+        renderMachineWatched(scene, settings, machineFor({4, 4}, 8, mode), report, label);
     expectMachineMatchesReference(reference, result, report, label);
     for (const ProcessorReport& p : report.processors)
       lightMessages[k] += p.node.messagesByKind[std::size_t(core::RayKind::Shadow)];

@@ -18,7 +18,9 @@ inline bool sanitized() {
 }
 
 // A run that has not finished by then is deadlocked or has lost its termination: fail loudly, not hang CI.
-inline std::chrono::seconds watchdogLimit() { return std::chrono::seconds(sanitized() ? 600 : 120); }
+inline std::chrono::seconds watchdogLimit() {
+  return std::chrono::seconds(sanitized() ? 600 : 120);
+}
 
 inline RenderSettings settingsFor(int side, core::Sampling sampling = core::Sampling::Centers) {
   RenderSettings s;
@@ -37,7 +39,8 @@ inline RenderResult renderMachineWatched(const core::Scene& scene, const RenderS
   std::future<RenderResult> done = task.get_future();
   std::thread worker(std::move(task));
   if (done.wait_for(watchdogLimit()) != std::future_status::ready) {
-    std::fprintf(stderr, "WATCHDOG: %s did not finish within %lld s (deadlock or lost termination); aborting\n",
+    std::fprintf(stderr,
+                 "WATCHDOG: %s did not finish within %lld s (deadlock or lost termination); aborting\n",
                  label.c_str(), (long long)watchdogLimit().count());
     std::fflush(stderr);
     std::abort();

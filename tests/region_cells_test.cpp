@@ -1,11 +1,12 @@
 // The geometry of a processor's region (Priol & Bouatouch 3.1, 3.3): screen lines, eye-frame rays, cells.
+#include "node/region_cells.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "core/balls.h"
 #include "core/brute_force.h"
-#include "node/region_cells.h"
 #include "node/region_map.h"
 
 namespace raycube::node {
@@ -81,13 +82,14 @@ TEST(RegionCells, WalkCoversTheIntervalContiguously) {
     bool contiguous = true;
     RegionExit exit;
     std::uint64_t steps = 0;
-    const WalkResult r = cells.walk(er, 0, er.partEnd(0), i, j,
-                                    [&](double ta, double tb, const std::vector<std::uint32_t>&) {
-                                      contiguous &= ta >= expected && tb > ta;
-                                      expected = tb;
-                                      return true;
-                                    },
-                                    exit, steps);
+    const WalkResult r = cells.walk(
+        er, 0, er.partEnd(0), i, j,
+        [&](double ta, double tb, const std::vector<std::uint32_t>&) {
+          contiguous &= ta >= expected && tb > ta;
+          expected = tb;
+          return true;
+        },
+        exit, steps);
     EXPECT_TRUE(contiguous);
     EXPECT_NE(r, WalkResult::Stopped);
     if (r == WalkResult::Exited) {
@@ -125,15 +127,16 @@ TEST(RegionCells, TheCellOwningAHitHoldsItsObject) {
     core::Hit found;
     RegionExit exit;
     std::uint64_t steps = 0;
-    cells.walk(er, 0, er.partEnd(0), i, j,
-               [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
-                 for (std::uint32_t o : objects) {
-                   const core::Hit h{core::nearestHit(f.scene.objects[o], ray, core::kInfinity), o};
-                   if (h.t >= ta && h.t < tb && h.closerThan(found)) found = h;
-                 }
-                 return !found.found();
-               },
-               exit, steps);
+    cells.walk(
+        er, 0, er.partEnd(0), i, j,
+        [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
+          for (std::uint32_t o : objects) {
+            const core::Hit h{core::nearestHit(f.scene.objects[o], ray, core::kInfinity), o};
+            if (h.t >= ta && h.t < tb && h.closerThan(found)) found = h;
+          }
+          return !found.found();
+        },
+        exit, steps);
     ++hits;
     EXPECT_EQ(found.object, truth.object);
     EXPECT_EQ(found.t, truth.t);

@@ -19,7 +19,6 @@
 #include "core/nff_reader.h"
 #include "host/sequential_renderers.h"
 
-
 namespace raycube::host {
 namespace {
 

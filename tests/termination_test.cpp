@@ -17,8 +17,8 @@
 #include "core/balls.h"
 #include "core/image.h"
 #include "host/machine.h"
-#include "machine_test_support.h"
 #include "host/sequential_renderers.h"
+#include "machine_test_support.h"
 
 namespace raycube::host {
 namespace {

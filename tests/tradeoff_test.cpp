@@ -1,4 +1,6 @@
 // `raycube tradeoff`: each knob's sweep is measured against a converged reference.
+#include "host/tradeoff.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -6,7 +8,6 @@
 #include <map>
 
 #include "core/balls.h"
-#include "host/tradeoff.h"
 
 namespace raycube::host {
 namespace {
@@ -32,9 +33,11 @@ TEST(Tradeoff, MoreAccurateSettingsComeCloserToTheReference) {
   // Deeper trees and more rays per pixel never move away from the converged image.
   for (const char* knob : {"depth", "spp"})
     for (std::size_t i = 1; i < byKnob[knob].size(); ++i)
-      EXPECT_LE(byKnob[knob][i].rmse, byKnob[knob][i - 1].rmse + 1e-12) << knob << " " << byKnob[knob][i].setting;
+      EXPECT_LE(byKnob[knob][i].rmse, byKnob[knob][i - 1].rmse + 1e-12)
+          << knob << " " << byKnob[knob][i].setting;
   EXPECT_GT(byKnob["depth"].front().rmse, byKnob["depth"].back().rmse);
-  EXPECT_GT(byKnob["spp"].back().counters.of(core::RayKind::Eye), byKnob["spp"].front().counters.of(core::RayKind::Eye));
+  EXPECT_GT(byKnob["spp"].back().counters.of(core::RayKind::Eye),
+            byKnob["spp"].front().counters.of(core::RayKind::Eye));
 
   const std::filesystem::path csv = std::filesystem::temp_directory_path() / "raycube_tradeoff_test.csv";
   writeTradeoffCsv(rows, csv);
