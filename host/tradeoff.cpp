@@ -59,7 +59,9 @@ std::vector<TradeoffRow> measureTradeoff(const core::Scene& scene, const RenderS
   RenderSettings defaults = base;
   defaults.shading = core::ShadingOptions{};
   for (const Setting& s : sweeps(defaults)) {
-    TradeoffRow row{s.knob, s.value};
+    TradeoffRow row;
+    row.knob = s.knob;
+    row.setting = s.value;
     std::vector<double> times;
     for (int run = 0; run < std::max(1, options.runs); ++run) {
       const RenderResult r = renderImageParallel(scene, s.settings);

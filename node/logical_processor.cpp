@@ -24,9 +24,9 @@ LogicalProcessor::LogicalProcessor(const MachineContext& context, NodeSetup setu
       setup_(std::move(setup)),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
+      cells_(area_, context.lines, setup_.cellLevel, setup_.objects, context.eyeBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
-      cells_(area_, context.lines, setup_.cellLevel, setup_.objects, context.eyeBoxes),
       inbox_(kInboxBatch),
       mailboxStamp_(context.scene.objects.size(), 0),
       mailboxT_(context.scene.objects.size(), 0.0) {
