@@ -217,6 +217,7 @@ struct TradeoffCommand {
   int balls = 0;
   std::string size = "256x256";
   int runs = 3;
+  int processors = 16;
   std::string csv = "out/tradeoff.csv";
   std::string plot = "out/tradeoff.png";
 };
@@ -238,6 +239,8 @@ int runTradeoff(const TradeoffCommand& cmd) {
     std::cerr << "  " << r.knob << " " << r.setting << ": " << fmt::format("{:.3f} s", r.seconds) << "\n";
   });
   std::cout << tradeoffTable(rows);
+  std::cerr << "measuring the load-estimate window on " << cmd.processors << " processors...\n";
+  std::cout << "\n" << subsampleTable(measureSubsampling(scene, base, cmd.processors, cmd.runs));
   for (const std::string& path : {cmd.csv, cmd.plot}) {
     const std::filesystem::path p(path);
     if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
@@ -255,6 +258,8 @@ void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
   t->add_option("--balls", cmd.balls, "Built-in SPD balls scene of this size (1-6)")->check(CLI::Range(1, 6));
   t->add_option("--size", cmd.size, "Image size WxH");
   t->add_option("--runs", cmd.runs, "Renders per setting (median time)")->check(CLI::Range(1, 100));
+  t->add_option("--procs", cmd.processors, "Processors for the sub-sampling window study (BSP)")
+      ->check(CLI::Range(1, 4096));
   t->add_option("--csv", cmd.csv, "Table as CSV");
   t->add_option("--plot", cmd.plot, "Error against time as a PNG plot");
 }

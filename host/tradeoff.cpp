@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "core/image_drawing.h"
+#include "host/machine.h"
+#include "host/machine_report.h"
 #include "host/sequential_renderers.h"
 
 namespace raycube::host {
@@ -90,6 +92,40 @@ std::string tradeoffTable(const std::vector<TradeoffRow>& rows) {
                         r.knob, r.setting, r.seconds, r.counters.of(core::RayKind::Eye),
                         r.counters.of(core::RayKind::Reflected), r.counters.of(core::RayKind::Refracted),
                         r.counters.of(core::RayKind::Shadow), r.rmse, r.psnr, r.maxAbs);
+  return text;
+}
+
+std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const RenderSettings& base, int processors,
+                                             int runs) {
+  std::vector<SubsampleRow> rows;
+  for (int window : {16, 8, 4, 2, 1}) {
+    MachineSettings machine;
+    machine.rows = 1;
+    machine.columns = processors;
+    machine.subsampleWindow = window;
+    SubsampleRow row;
+    row.window = window;
+    std::vector<double> times;
+    for (int run = 0; run < std::max(1, runs); ++run) {
+      MachineReport report;
+      times.push_back(renderMachine(scene, base, machine, &report).preprocessSeconds);
+      if (run > 0) continue;
+      const LoadBalance b = loadBalanceOf(report);
+      row.raysMaxOverMean = b.raysMaxOverMean;
+      row.raysMinOverMean = b.raysMinOverMean;
+      row.costMaxOverMean = b.costMaxOverMean;
+    }
+    row.preprocessSeconds = median(times);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string subsampleTable(const std::vector<SubsampleRow>& rows) {
+  std::string text = "subsample  preprocessing s  rays max/mean  rays min/mean  cost max/mean\n";
+  for (const SubsampleRow& r : rows)
+    text += fmt::format("{:>6}x{:<3} {:>15.4f} {:>14.2f} {:>14.2f} {:>14.2f}\n", r.window, r.window,
+                        r.preprocessSeconds, r.raysMaxOverMean, r.raysMinOverMean, r.costMaxOverMean);
   return text;
 }
 

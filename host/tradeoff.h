@@ -35,6 +35,17 @@ std::vector<TradeoffRow> measureTradeoff(const core::Scene& scene, const RenderS
                                          const std::function<void(const TradeoffRow&)>& progress);
 
 std::string tradeoffTable(const std::vector<TradeoffRow>& rows);
+
+// The load-estimate knob (3.7.1): the machine's sub-sampling window against the preprocessing it costs and
+// the balance it buys (BSP, cost metric, `processors` logical processors).
+struct SubsampleRow {
+  int window = 0;
+  double preprocessSeconds = 0;  // median
+  double raysMaxOverMean = 0, raysMinOverMean = 0, costMaxOverMean = 0;
+};
+std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const RenderSettings& base, int processors,
+                                             int runs);
+std::string subsampleTable(const std::vector<SubsampleRow>& rows);
 void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path);
 // Error (RMSE, log scale) against time, one polyline per knob in the colours of kKnobColors.
 core::Image tradeoffPlot(const std::vector<TradeoffRow>& rows);

@@ -51,5 +51,22 @@ TEST(Tradeoff, MoreAccurateSettingsComeCloserToTheReference) {
   EXPECT_NE(tradeoffTable(rows).find("min-weight"), std::string::npos);
 }
 
+TEST(Tradeoff, SubsamplingWindowsReportTheirCostAndBalance) {
+  const core::Scene scene = core::makeBalls(2);
+  RenderSettings base;
+  base.width = base.height = 32;
+  base.progress = false;
+  const auto rows = measureSubsampling(scene, base, 4, 1);
+  ASSERT_EQ(rows.size(), 5u);
+  for (const SubsampleRow& r : rows) {
+    EXPECT_GT(r.preprocessSeconds, 0) << r.window;
+    EXPECT_GE(r.raysMaxOverMean, 1.0) << r.window;
+    EXPECT_LE(r.raysMinOverMean, 1.0) << r.window;
+  }
+  EXPECT_EQ(rows.front().window, 16);
+  EXPECT_EQ(rows.back().window, 1);
+  EXPECT_NE(subsampleTable(rows).find("16x16"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace raycube::host
