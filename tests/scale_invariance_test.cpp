@@ -18,6 +18,7 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/sequential_renderers.h"
+#include "scene_scaling.h"
 
 namespace raycube::host {
 namespace {
@@ -27,33 +28,7 @@ bool sanitized() {
   return value != nullptr && std::string(value) == "1";
 }
 
-// Every length of the scene times `factor`: camera position, target and hither, lights, and all geometry.
-// Directions (up, patch normals), angles, colours and materials are unit-free and stay.
-core::Scene scaled(core::Scene scene, double factor) {
-  scene.camera.from *= factor;
-  scene.camera.at *= factor;
-  scene.camera.hither *= factor;
-  for (core::Light& light : scene.lights) light.position *= factor;
-  for (core::Object& object : scene.objects) {
-    std::visit(
-        [&](auto& shape) {
-          using T = std::decay_t<decltype(shape)>;
-          if constexpr (std::is_same_v<T, core::Sphere>) {
-            shape.center *= factor;
-            shape.radius *= factor;
-          } else if constexpr (std::is_same_v<T, core::Cone>) {
-            shape.base *= factor;
-            shape.apex *= factor;
-            shape.baseRadius *= factor;
-            shape.apexRadius *= factor;
-          } else {  // Polygon, Patch: vertices only, never the normals
-            for (core::Vec3& v : shape.vertices) v *= factor;
-          }
-        },
-        object.shape);
-  }
-  return scene;
-}
+using raycube::testing_support::scaled;
 
 // Near the point where the big ball of the sphereflake rests on the floor, (0, 0, -0.5): two surfaces
 // meeting at a grazing angle, lit floor in front, the shadowed wedge between floor and ball, and the ball's

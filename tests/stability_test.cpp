@@ -24,6 +24,7 @@
 #include "host/machine.h"
 #include "host/sequential_renderers.h"
 #include "machine_test_support.h"
+#include "scene_scaling.h"
 
 namespace raycube::host {
 namespace {
@@ -75,32 +76,7 @@ class SceneBuilder {
   core::Scene scene_;
 };
 
-// Every length of the scene times `factor`: camera position, target and hither, lights, and all geometry.
-core::Scene scaled(core::Scene scene, double factor) {
-  scene.camera.from *= factor;
-  scene.camera.at *= factor;
-  scene.camera.hither *= factor;
-  for (core::Light& light : scene.lights) light.position *= factor;
-  for (core::Object& object : scene.objects) {
-    std::visit(
-        [&](auto& shape) {
-          using T = std::decay_t<decltype(shape)>;
-          if constexpr (std::is_same_v<T, core::Sphere>) {
-            shape.center *= factor;
-            shape.radius *= factor;
-          } else if constexpr (std::is_same_v<T, core::Cone>) {
-            shape.base *= factor;
-            shape.apex *= factor;
-            shape.baseRadius *= factor;
-            shape.apexRadius *= factor;
-          } else {  // Polygon, Patch: vertices only, never the normals
-            for (Vec3& v : shape.vertices) v *= factor;
-          }
-        },
-        object.shape);
-  }
-  return scene;
-}
+using raycube::testing_support::scaled;
 
 // ---- Renders and what every render must satisfy
 // ------------------------------------------------------------
