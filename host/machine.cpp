@@ -49,7 +49,7 @@ node::LightSources withCorners(node::LightSources sources, const core::View& vie
     const core::Box& e = sources.eyeBox;
     const core::Vec3 eyeFrame(corner & 1 ? e.hi.x : e.lo.x, corner & 2 ? e.hi.y : e.lo.y,
                               corner & 4 ? e.hi.z : e.lo.z);
-    sources.corners.push_back(view.fromEye(core::Vec3(eyeFrame.x, -eyeFrame.y, eyeFrame.z)));  // y down -> up
+    sources.corners.push_back(node::worldFromEyeFrame(view, eyeFrame));
   }
   return sources;
 }

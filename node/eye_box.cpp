@@ -5,15 +5,10 @@
 
 #include "core/intersect.h"
 #include "core/tolerances.h"
+#include "node/eye_frame_ray.h"
 
 namespace raycube::node {
 namespace {
-
-core::Vec3 eyeFrame(const core::View& view, const core::Vec3& world) {
-  core::Vec3 e = view.toEye(world);
-  e.y = -e.y;
-  return e;
-}
 
 double widen(double v, double magnitude) {
   return core::kCellMarginRelative * (std::abs(v) + magnitude);
@@ -24,17 +19,17 @@ double widen(double v, double magnitude) {
 EyeBox eyeBoxOf(const core::Object& object, const core::View& view) {
   core::Box box;
   if (const auto* sphere = std::get_if<core::Sphere>(&object.shape)) {
-    const core::Vec3 c = eyeFrame(view, sphere->center);
+    const core::Vec3 c = eyeFramePoint(view, sphere->center);
     box.extend(c - core::Vec3(sphere->radius));
     box.extend(c + core::Vec3(sphere->radius));
   } else if (const auto* polygon = std::get_if<core::Polygon>(&object.shape)) {
-    for (const core::Vec3& v : polygon->vertices) box.extend(eyeFrame(view, v));
+    for (const core::Vec3& v : polygon->vertices) box.extend(eyeFramePoint(view, v));
   } else if (const auto* patch = std::get_if<core::Patch>(&object.shape)) {
-    for (const core::Vec3& v : patch->vertices) box.extend(eyeFrame(view, v));
+    for (const core::Vec3& v : patch->vertices) box.extend(eyeFramePoint(view, v));
   } else {
     const core::Box world = core::boundsOf(object);
     for (int corner = 0; corner < 8; ++corner)
-      box.extend(eyeFrame(
+      box.extend(eyeFramePoint(
           view, core::Vec3(corner & 1 ? world.hi.x : world.lo.x, corner & 2 ? world.hi.y : world.lo.y,
                            corner & 4 ? world.hi.z : world.lo.z)));
   }

@@ -13,15 +13,24 @@ namespace raycube::node {
 
 using core::Vec3;
 
+// A point's coordinates in the eye frame (y down), and back to world space.
+inline Vec3 eyeFramePoint(const core::View& view, const Vec3& world) {
+  Vec3 e = view.toEye(world);
+  e.y = -e.y;
+  return e;
+}
+inline Vec3 worldFromEyeFrame(const core::View& view, const Vec3& e) {
+  return view.fromEye(Vec3(e.x, -e.y, e.z));
+}
+
 struct EyeFrameRay {
   Vec3 o;  // origin in the eye frame
   Vec3 d;  // direction in the eye frame
 
   static EyeFrameRay of(const core::Ray& ray, const core::View& view) {
-    Vec3 o = view.toEye(ray.origin), d = view.directionToEye(ray.direction);
-    o.y = -o.y;
+    Vec3 d = view.directionToEye(ray.direction);
     d.y = -d.y;
-    return EyeFrameRay{o, d};
+    return EyeFrameRay{eyeFramePoint(view, ray.origin), d};
   }
 
   double zAt(double t) const { return o.z + t * d.z; }

@@ -78,12 +78,17 @@ bool LogicalProcessor::shootNextPrimary() {
   m.destination = std::uint16_t(setup_.id);
   ++stats_.spawned[std::size_t(core::RayKind::Eye)];
   evaluate(m, true);
+  evaluateLocalRays();
+  return true;
+}
+
+// Rays spawned here that start in this region, depth first (keeps the local stack short).
+void LogicalProcessor::evaluateLocalRays() {
   while (!local_.empty()) {
     const RayMessage next = local_.back();
     local_.pop_back();
     evaluate(next, false);
   }
-  return true;
 }
 
 // Tests `objects` for the part [ta, tb) of the ray's interval this cell owns. Closest-hit rays stop at the
@@ -184,8 +189,7 @@ void LogicalProcessor::evaluate(RayMessage m, bool primary) {
 // its light's volume: traced here, in one piece, exactly as the reference traces it; no message.
 bool LogicalProcessor::tracedWhereItStarts(const RayMessage& m, double& transmission) {
   if (lightVolumes_.empty() || m.tEnter != m.ray.ray.tMin || m.attenuation != 1) return false;
-  core::Vec3 origin = context_.view.toEye(m.ray.ray.origin);
-  origin.y = -origin.y;
+  const core::Vec3 origin = eyeFramePoint(context_.view, m.ray.ray.origin);
   auto inside = [&](const core::Box& box) {
     for (int a = 0; a < 3; ++a)
       if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
@@ -288,11 +292,7 @@ void LogicalProcessor::onReceived(const RayMessage& m) {
     return;
   }
   evaluate(m, false);
-  while (!local_.empty()) {
-    const RayMessage next = local_.back();
-    local_.pop_back();
-    evaluate(next, false);
-  }
+  evaluateLocalRays();
 }
 
 std::size_t LogicalProcessor::backlog() const {

@@ -82,6 +82,7 @@ class LogicalProcessor {
   // Synthesis task
   bool shootNextPrimary();
   void evaluate(RayMessage message, bool primary);
+  void evaluateLocalRays();
   void finishRay(const core::TracedRay& ray, const core::Hit& hit, double attenuation);
   bool tracedWhereItStarts(const RayMessage& message, double& transmission);
   template <class Cells>

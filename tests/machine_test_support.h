@@ -8,14 +8,11 @@
 #include <thread>
 
 #include "host/machine.h"
+#include "test_support.h"
 
 namespace raycube::host::testing_support {
 
-// Sanitized builds run 5-20x slower: they get a representative subset of grids, capacities and scenes.
-inline bool sanitized() {
-  const char* value = std::getenv("RAYCUBE_SANITIZED");
-  return value != nullptr && std::string(value) == "1";
-}
+using raycube::testing_support::sanitized;
 
 // A run that has not finished by then is deadlocked or has lost its termination: fail loudly, not hang CI.
 inline std::chrono::seconds watchdogLimit() {

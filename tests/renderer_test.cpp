@@ -13,15 +13,12 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/sequential_renderers.h"
+#include "test_support.h"
 
 namespace raycube::host {
 namespace {
 
-// Sanitized builds run 5-20x slower; the properties checked here do not depend on the image size.
-bool sanitized() {
-  const char* value = std::getenv("RAYCUBE_SANITIZED");
-  return value != nullptr && std::string(value) == "1";
-}
+using testing_support::sanitized;
 int imageSide() {
   return sanitized() ? 16 : 48;
 }

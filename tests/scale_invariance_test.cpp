@@ -19,14 +19,12 @@
 #include "core/nff_reader.h"
 #include "host/sequential_renderers.h"
 #include "scene_scaling.h"
+#include "test_support.h"
 
 namespace raycube::host {
 namespace {
 
-bool sanitized() {
-  const char* value = std::getenv("RAYCUBE_SANITIZED");
-  return value != nullptr && std::string(value) == "1";
-}
+using testing_support::sanitized;
 
 using raycube::testing_support::scaled;
 
