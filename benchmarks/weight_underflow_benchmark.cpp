@@ -18,6 +18,7 @@
 #include <xmmintrin.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "core/facing_mirrors.h"
@@ -27,10 +28,12 @@ namespace raycube::host {
 namespace {
 
 constexpr int kSide = 32;
-// Level at which coeff first is denormal: 1e-5 -> 63, 1e-10 -> 32, 1e-160 -> 3; 1e-300 skips straight
-// from 1e-300 at level 2 to 0 at level 3. Double's denormals span 16 decades, so at most 3 of 64 levels
-// carry one; float's span 7 from 1.2e-38, so with a float precision ks = 0.25 puts about 11 levels there.
-constexpr double kReflectances[] = {1, 0.999, 0.5, 1e-5, 1e-10, 1e-160, 1e-300};
+// Level at which coeff first is denormal in double: 1e-5 -> 63, 1e-10 -> 32, 1e-160 -> 3; 1e-300 skips
+// straight from 1e-300 at level 2 to 0 at level 3. Double's denormals span 16 decades, so at most 3 of 64
+// levels carry one. Float's span 7 decades from 1.2e-38: ks = 0.25 reaches them at level 64 (0.25^63 =
+// 2^-126), ks = 0.2 at level 56 with 9 levels there, ks = 1e-5 at level 9.
+constexpr double kDoubleReflectances[] = {1, 0.999, 0.5, 1e-5, 1e-10, 1e-160, 1e-300};
+constexpr double kFloatReflectances[] = {1, 0.999, 0.5, 0.25, 0.2, 1e-5};
 
 enum class Denormals : std::uint8_t { Kept, Flushed };
 
@@ -49,9 +52,10 @@ class FlushDenormals {
   unsigned saved_;
 };
 
-// Everything but the scene; a later --precision becomes one more field set here and one more name part.
-RenderSettings mirrorSettings() {
+// Everything but the scene.
+RenderSettings mirrorSettings(core::Precision precision) {
   RenderSettings settings;
+  settings.precision = precision;
   settings.width = kSide;
   settings.height = kSide;
   settings.sampling = core::Sampling::Centers;
@@ -91,12 +95,13 @@ void runAgainstKs1(benchmark::State& state, double ks, const RenderSettings& set
   state.counters["rays_per_render"] = renders > 0 ? measured.rays / renders : 0.0;
 }
 
-void registerBenchmarks() {
+void registerBenchmarks(core::Precision precision, std::span<const double> reflectances) {
   for (const Denormals mode : {Denormals::Kept, Denormals::Flushed}) {
-    for (const double ks : kReflectances) {
-      const std::string name = fmt::format("FacingMirrorsDepth64/ks:{:g}/denormals:{}", ks,
-                                           mode == Denormals::Kept ? "kept" : "flushed");
-      benchmark::RegisterBenchmark(name.c_str(), runAgainstKs1, ks, mirrorSettings(), mode)
+    for (const double ks : reflectances) {
+      const std::string name =
+          fmt::format("FacingMirrorsDepth64/{}/ks:{:g}/denormals:{}", core::nameOf(precision), ks,
+                      mode == Denormals::Kept ? "kept" : "flushed");
+      benchmark::RegisterBenchmark(name.c_str(), runAgainstKs1, ks, mirrorSettings(precision), mode)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
     }
@@ -107,7 +112,8 @@ void registerBenchmarks() {
 }  // namespace raycube::host
 
 int main(int argc, char** argv) {
-  raycube::host::registerBenchmarks();
+  raycube::host::registerBenchmarks(raycube::core::Precision::Double, raycube::host::kDoubleReflectances);
+  raycube::host::registerBenchmarks(raycube::core::Precision::Float, raycube::host::kFloatReflectances);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -1,56 +1,74 @@
 #pragma once
-// Axis-aligned boxes: bounding volumes for the BVH and for the machine's region/cell assignment.
+// Axis-aligned boxes: bounding volumes for the BVH and for the machine's region/cell assignment. Box is the
+// double one; the BVH keeps its nodes in the precision of the rays it tests (BasicBox<Real>).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/ray.h"
 #include "core/tolerances.h"
 
 namespace raycube::core {
 
-struct Box {
-  Vec3 lo{kInfinity, kInfinity, kInfinity};
-  Vec3 hi{-kInfinity, -kInfinity, -kInfinity};
+template <class Real>
+struct BasicBox {
+  static constexpr Real kInf = std::numeric_limits<Real>::infinity();
+  Vec3Of<Real> lo{kInf, kInf, kInf};
+  Vec3Of<Real> hi{-kInf, -kInf, -kInf};
 
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
-  void extend(const Vec3& p) {
+  void extend(const Vec3Of<Real>& p) {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
   }
-  void extend(const Box& b) {
+  void extend(const BasicBox& b) {
     lo = glm::min(lo, b.lo);
     hi = glm::max(hi, b.hi);
   }
-  Vec3 center() const { return 0.5 * (lo + hi); }
-  Vec3 extent() const { return hi - lo; }
+  Vec3Of<Real> center() const { return Real(0.5) * (lo + hi); }
+  Vec3Of<Real> extent() const { return hi - lo; }
   // Grown by kBoxPaddingRelative of its size and magnitude: conservative against rounding.
-  Box padded() const {
-    const Vec3 magnitude = glm::max(glm::abs(lo), glm::abs(hi));
-    const Vec3 pad = kBoxPaddingRelative * (extent() + magnitude);
-    return Box{lo - pad, hi + pad};
+  BasicBox padded() const {
+    const Vec3Of<Real> magnitude = glm::max(glm::abs(lo), glm::abs(hi));
+    const Vec3Of<Real> pad = Real(kBoxPaddingRelative) * (extent() + magnitude);
+    return BasicBox{lo - pad, hi + pad};
+  }
+  // The box in another precision, rounded outwards so that it still holds everything this one holds.
+  template <class To>
+  BasicBox<To> enclosingIn() const {
+    BasicBox<To> out{Vec3Of<To>(lo), Vec3Of<To>(hi)};
+    for (int a = 0; a < 3; ++a) {
+      if (Real(out.lo[a]) > lo[a]) out.lo[a] = std::nextafter(out.lo[a], -BasicBox<To>::kInf);
+      if (Real(out.hi[a]) < hi[a]) out.hi[a] = std::nextafter(out.hi[a], BasicBox<To>::kInf);
+    }
+    return out;
   }
 };
+using Box = BasicBox<double>;
 
 // A ray prepared for many slab tests: reciprocal direction (IEEE gives +-inf for zero components) and the
 // index of the near plane per axis, so the test needs no swaps.
+template <class Real>
 struct InverseDirection {
-  explicit InverseDirection(const Vec3& d) : inv(1.0 / d.x, 1.0 / d.y, 1.0 / d.z) {
+  explicit InverseDirection(const Vec3Of<Real>& d) : inv(Real(1) / d.x, Real(1) / d.y, Real(1) / d.z) {
     for (int a = 0; a < 3; ++a) negative[a] = inv[a] < 0;
   }
-  Vec3 inv;
+  Vec3Of<Real> inv;
   bool negative[3];
 };
 
-// Robust slab test (Ize, "Robust BVH ray traversal", 2013): the far distance is widened by 2 gamma(3) so
-// rounding never culls a true hit. A NaN from (0 * inf), an origin exactly on the plane of a slab the ray
-// runs parallel to, fails every comparison and leaves [t0, t1] unconstrained by that slab.
-inline bool slabsHit(const Box& box, const Vec3& origin, const InverseDirection& id, double tMin, double tMax,
-                     double& tEnter) {
-  const Vec3* planes = &box.lo;  // planes[0] = lo, planes[1] = hi
-  double t0 = tMin, t1 = tMax;
+// Robust slab test (Ize, "Robust BVH ray traversal", 2013): the far distance is widened by 2 gamma(3) of the
+// precision so rounding never culls a true hit. A NaN from (0 * inf), an origin exactly on the plane of a
+// slab the ray runs parallel to, fails every comparison and leaves [t0, t1] unconstrained by that slab.
+template <class Real>
+inline bool slabsHit(const BasicBox<Real>& box, const Vec3Of<Real>& origin, const InverseDirection<Real>& id,
+                     Real tMin, Real tMax, Real& tEnter) {
+  constexpr Real kWidening = 1 + 2 * 3 * (std::numeric_limits<Real>::epsilon() / 2);
+  const Vec3Of<Real>* planes = &box.lo;  // planes[0] = lo, planes[1] = hi
+  Real t0 = tMin, t1 = tMax;
   for (int a = 0; a < 3; ++a) {
-    const double tNear = (planes[id.negative[a]][a] - origin[a]) * id.inv[a];
-    const double tFar = (planes[!id.negative[a]][a] - origin[a]) * id.inv[a] * (1 + 2 * 3 * 0x1p-53);
+    const Real tNear = (planes[id.negative[a]][a] - origin[a]) * id.inv[a];
+    const Real tFar = (planes[!id.negative[a]][a] - origin[a]) * id.inv[a] * kWidening;
     t0 = tNear > t0 ? tNear : t0;
     t1 = tFar < t1 ? tFar : t1;
   }

@@ -1,5 +1,7 @@
 #pragma once
-// The reference database query: every object tested for every ray (the ground truth).
+// The reference database query: every object tested for every ray (the ground truth), in the precision of
+// the ray it is asked about.
+#include <limits>
 #include <vector>
 
 #include "core/intersect.h"
@@ -13,17 +15,19 @@ class BruteForce {
  public:
   BruteForce(const Scene& scene, const Whitted& shading) : scene_(scene), shading_(shading) {}
 
-  Hit closestHit(const Ray& ray, TraceCounters& counters) const {
+  template <class Real>
+  Hit closestHit(const BasicRay<Real>& ray, TraceCounters& counters) const {
     Hit best;
     for (std::uint32_t i = 0; i < scene_.objects.size(); ++i) {
       ++counters.intersectionTests;
-      const Hit h{nearestHit(scene_.objects[i], ray, kInfinity), i};
+      const Hit h{nearestHit(scene_.objects[i], ray, std::numeric_limits<Real>::infinity()), i};
       if (h.t < kInfinity && h.closerThan(best)) best = h;
     }
     return best;
   }
 
-  double transmission(const Ray& ray, TraceCounters& counters, std::vector<Hit>& crossed) const {
+  template <class Real>
+  double transmission(const BasicRay<Real>& ray, TraceCounters& counters, std::vector<Hit>& crossed) const {
     crossed.clear();
     for (std::uint32_t i = 0; i < scene_.objects.size(); ++i) {
       ++counters.intersectionTests;

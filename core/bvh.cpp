@@ -1,6 +1,7 @@
 #include "core/bvh.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/transmission.h"
 
@@ -18,9 +19,12 @@ std::vector<std::uint32_t> allObjects(const Scene& scene) {
 }
 }  // namespace
 
-Bvh::Bvh(const Scene& scene, const Whitted& shading) : Bvh(scene, shading, allObjects(scene)) {}
+template <class Real>
+BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading)
+    : BasicBvh(scene, shading, allObjects(scene)) {}
 
-Bvh::Bvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects)
+template <class Real>
+BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects)
     : scene_(scene), shading_(shading), order_(std::move(objects)) {
   std::vector<Box> boxes(scene.objects.size());
   for (std::uint32_t o : order_) boxes[o] = boundsOf(scene.objects[o]);
@@ -42,7 +46,8 @@ constexpr double kTraversalCost = 1.0;  // relative to one ray-object test
 }  // namespace
 
 // Binned surface-area heuristic over object centroids (Wald 2007); a leaf when no split pays.
-std::uint32_t Bvh::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end) {
+template <class Real>
+std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end) {
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   Box bounds, centroids;
@@ -50,7 +55,7 @@ std::uint32_t Bvh::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint
     bounds.extend(boxes[order_[i]]);
     centroids.extend(boxes[order_[i]].center());
   }
-  nodes_[index].box = bounds;
+  nodes_[index].box = bounds.template enclosingIn<Real>();
   const std::uint32_t count = end - begin;
   int bestAxis = -1, bestBin = 0;
   double bestCost = double(count);  // cost of a leaf, in object tests
@@ -108,17 +113,19 @@ std::uint32_t Bvh::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint
 
 // Front-to-back traversal; a node is skipped only when it starts strictly beyond tLimit, so objects tied
 // with the current best t are still visited and the tie rule can pick the smaller index.
+template <class Real>
 template <class Visit>
-void Bvh::traverse(const Ray& ray, const double& tLimit, TraceCounters& counters, Visit&& visit) const {
+void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, const Real& tLimit, TraceCounters& counters,
+                              Visit&& visit) const {
   if (nodes_.empty()) return;
-  const InverseDirection inv(ray.direction);
+  const InverseDirection<Real> inv(ray.direction);
   struct Entry {
     std::uint32_t node;
-    double tEnter;
+    Real tEnter;
   };
   Entry stack[64];
   int top = 0;
-  double tEnter;
+  Real tEnter;
   ++counters.boxTests;
   if (!slabsHit(nodes_[0].box, ray.origin, inv, ray.tMin, tLimit, tEnter)) return;
   stack[top++] = Entry{0, tEnter};
@@ -132,7 +139,7 @@ void Bvh::traverse(const Ray& ray, const double& tLimit, TraceCounters& counters
       continue;
     }
     const std::uint32_t children[2] = {entry.node + 1, node.first};
-    double tChild[2];
+    Real tChild[2];
     bool hit[2];
     for (int c = 0; c < 2; ++c) {
       ++counters.boxTests;
@@ -145,18 +152,26 @@ void Bvh::traverse(const Ray& ray, const double& tLimit, TraceCounters& counters
   }
 }
 
-Hit Bvh::closestHit(const Ray& ray, TraceCounters& counters) const {
+// The best t so far, in Real, limits the traversal; a float t converts to the Hit's double exactly.
+template <class Real>
+Hit BasicBvh<Real>::closestHit(const BasicRay<Real>& ray, TraceCounters& counters) const {
   Hit best;
-  traverse(ray, best.t, counters, [&](std::uint32_t object) {
+  Real bestT = std::numeric_limits<Real>::infinity();
+  traverse(ray, bestT, counters, [&](std::uint32_t object) {
     ++counters.intersectionTests;
-    const Hit h{nearestHit(scene_.objects[object], ray, kInfinity), object};
-    if (h.t < kInfinity && h.closerThan(best)) best = h;
+    const Hit h{nearestHit(scene_.objects[object], ray, std::numeric_limits<Real>::infinity()), object};
+    if (h.t < kInfinity && h.closerThan(best)) {
+      best = h;
+      bestT = Real(h.t);
+    }
     return true;
   });
   return best;
 }
 
-double Bvh::transmission(const Ray& ray, TraceCounters& counters, std::vector<Hit>& crossed) const {
+template <class Real>
+double BasicBvh<Real>::transmission(const BasicRay<Real>& ray, TraceCounters& counters,
+                                    std::vector<Hit>& crossed) const {
   crossed.clear();
   bool blocked = false;
   traverse(ray, ray.tMax, counters, [&](std::uint32_t object) {
@@ -173,5 +188,8 @@ double Bvh::transmission(const Ray& ray, TraceCounters& counters, std::vector<Hi
   });
   return blocked ? 0.0 : attenuate(1.0, crossed, shading_);
 }
+
+template class BasicBvh<float>;
+template class BasicBvh<double>;
 
 }  // namespace raycube::core

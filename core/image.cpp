@@ -356,6 +356,13 @@ ImageDifference compareImages(const Image& a, const Image& b) {
   return difference;
 }
 
+Image differenceImage(const Image& a, const Image& b, double gain) {
+  checkSameSize(a, b);
+  Image d = Image::filled(a.width, a.height);
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) d.pixels[i] = gain * glm::abs(a.pixels[i] - b.pixels[i]);
+  return d;
+}
+
 std::size_t countPixelsOver(const Image& a, const Image& b, double threshold) {
   checkSameSize(a, b);
   std::size_t count = 0;

@@ -63,6 +63,8 @@ struct ImageDifference {
 
 // Throws std::invalid_argument when the sizes differ.
 ImageDifference compareImages(const Image& a, const Image& b);
+// |a - b| per channel, times gain (to make small differences visible). Throws when the sizes differ.
+Image differenceImage(const Image& a, const Image& b, double gain = 1);
 // Pixels where some channel differs by more than threshold. Throws std::invalid_argument when sizes differ.
 std::size_t countPixelsOver(const Image& a, const Image& b, double threshold);
 // Same size and the same bit pattern in every channel (so -0.0 differs from 0.0 and a NaN matches itself):

@@ -1,135 +1,148 @@
 #include "core/intersect.h"
 
 #include <cmath>
+#include <limits>
 #include <utility>
+
+#include "core/overloaded.h"
 
 namespace raycube::core {
 namespace {
 
+template <class Real>
+using V = Vec3Of<Real>;
+template <class Real>
+constexpr Real kNone = std::numeric_limits<Real>::infinity();
+
 // The smaller root in the open interval, from a numerically stable pair of roots.
-double firstInInterval(double t0, double t1, double tMin, double tMax) {
+template <class Real>
+Real firstInInterval(Real t0, Real t1, Real tMin, Real tMax) {
   if (t0 > t1) std::swap(t0, t1);
   if (t0 > tMin && t0 < tMax) return t0;
   if (t1 > tMin && t1 < tMax) return t1;
-  return kInfinity;
+  return kNone<Real>;
 }
 
 // Sphere: the discriminant is formed from the perpendicular distance of the centre to the line
 // (Haines et al., Ray Tracing Gems ch. 7), avoiding cancellation for small, far spheres.
-double hitSphere(const Sphere& s, const Ray& ray, double tMax) {
-  const Vec3 oc = ray.origin - s.center;
-  const double b = -glm::dot(oc, ray.direction);
-  const Vec3 f = oc + b * ray.direction;
-  const double r2 = s.radius * s.radius;
-  const double discriminant = r2 - glm::dot(f, f);
-  if (discriminant < 0) return kInfinity;
-  const double c = glm::dot(oc, oc) - r2;
-  const double q = b + std::copysign(std::sqrt(discriminant), b);
-  if (q == 0) return firstInInterval(0, 0, ray.tMin, tMax);
+template <class Real>
+Real hitSphere(const Sphere& s, const BasicRay<Real>& ray, Real tMax) {
+  const V<Real> oc = ray.origin - V<Real>(s.center);
+  const Real b = -glm::dot(oc, ray.direction);
+  const V<Real> f = oc + b * ray.direction;
+  const Real radius = Real(s.radius);
+  const Real r2 = radius * radius;
+  const Real discriminant = r2 - glm::dot(f, f);
+  if (discriminant < 0) return kNone<Real>;
+  const Real c = glm::dot(oc, oc) - r2;
+  const Real q = b + std::copysign(std::sqrt(discriminant), b);
+  if (q == 0) return firstInInterval(Real(0), Real(0), ray.tMin, tMax);
   return firstInInterval(c / q, q, ray.tMin, tMax);
 }
 
+template <class Real>
 struct TriangleHit {
-  double t = kInfinity;
-  double b0 = 0, b1 = 0, b2 = 0;  // barycentric weights of v0, v1, v2
+  Real t = kNone<Real>;
+  Real b0 = 0, b1 = 0, b2 = 0;  // barycentric weights of v0, v1, v2
 };
 
 // Watertight ray-triangle test (Woop, Benthin, Wald 2013): edges shared by two triangles are never missed.
-bool hitTriangle(const Vec3& v0, const Vec3& v1, const Vec3& v2, const Ray& ray, double tMax,
-                 TriangleHit& out) {
-  const Vec3& d = ray.direction;
-  const Vec3 ad = glm::abs(d);
+template <class Real>
+bool hitTriangle(const V<Real>& v0, const V<Real>& v1, const V<Real>& v2, const BasicRay<Real>& ray,
+                 Real tMax, TriangleHit<Real>& out) {
+  const V<Real>& d = ray.direction;
+  const V<Real> ad = glm::abs(d);
   const int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
   int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
   if (d[kz] < 0) std::swap(kx, ky);
-  const double sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1.0 / d[kz];
-  const Vec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
-  const double ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
-  const double bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
-  const double cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
-  const double u = cx * by - cy * bx;
-  const double v = ax * cy - ay * cx;
-  const double w = bx * ay - by * ax;
+  const Real sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = Real(1) / d[kz];
+  const V<Real> a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
+  const Real ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
+  const Real bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
+  const Real cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+  const Real u = cx * by - cy * bx;
+  const Real v = ax * cy - ay * cx;
+  const Real w = bx * ay - by * ax;
   if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
-  const double det = u + v + w;
+  const Real det = u + v + w;
   if (det == 0) return false;
-  const double tScaled = u * sz * a[kz] + v * sz * b[kz] + w * sz * c[kz];
-  const double t = tScaled / det;
+  const Real tScaled = u * sz * a[kz] + v * sz * b[kz] + w * sz * c[kz];
+  const Real t = tScaled / det;
   if (!(t > ray.tMin && t < tMax)) return false;
-  out = TriangleHit{t, u / det, v / det, w / det};
+  out = TriangleHit<Real>{t, u / det, v / det, w / det};
   return true;
 }
 
 // Polygons and patches are fans of triangles around vertex 0; the nearest fan triangle wins.
-template <class Visit>
-void forEachFanTriangle(const std::vector<Vec3>& vertices, Visit&& visit) {
-  for (std::size_t i = 1; i + 1 < vertices.size(); ++i) visit(0u, i, i + 1);
-}
-
-TriangleHit hitFan(const std::vector<Vec3>& vertices, const Ray& ray, double tMax, std::size_t* corner) {
-  TriangleHit best;
-  forEachFanTriangle(vertices, [&](std::size_t i0, std::size_t i1, std::size_t i2) {
-    TriangleHit h;
-    if (hitTriangle(vertices[i0], vertices[i1], vertices[i2], ray, std::min(tMax, best.t), h)) {
+template <class Real>
+TriangleHit<Real> hitFan(const std::vector<Vec3>& vertices, const BasicRay<Real>& ray, Real tMax,
+                         std::size_t* corner) {
+  TriangleHit<Real> best;
+  const V<Real> v0(vertices[0]);
+  for (std::size_t i = 1; i + 1 < vertices.size(); ++i) {
+    TriangleHit<Real> h;
+    if (hitTriangle(v0, V<Real>(vertices[i]), V<Real>(vertices[i + 1]), ray, std::min(tMax, best.t), h)) {
       best = h;
-      if (corner) *corner = i1;
+      if (corner) *corner = i;
     }
-  });
+  }
   return best;
 }
 
 // Open cone or cylinder about the axis base->apex; radius varies linearly r(s) = r0 + k s, 0 <= s <= h.
+template <class Real>
 struct ConeFrame {
-  Vec3 axis;  // unit
-  double height, slope;
+  V<Real> base, axis;  // axis: unit
+  Real baseRadius, height, slope;
 };
-ConeFrame frameOf(const Cone& c) {
-  const Vec3 along = c.apex - c.base;
-  const double h = glm::length(along);
-  return ConeFrame{along / h, h, (c.apexRadius - c.baseRadius) / h};
+template <class Real>
+ConeFrame<Real> frameOf(const Cone& c) {
+  const V<Real> base(c.base), along = V<Real>(c.apex) - base;
+  const Real h = glm::length(along);
+  return ConeFrame<Real>{base, along / h, Real(c.baseRadius), h,
+                         (Real(c.apexRadius) - Real(c.baseRadius)) / h};
 }
 
-double hitCone(const Cone& cone, const Ray& ray, double tMax) {
-  const ConeFrame f = frameOf(cone);
-  const Vec3 ob = ray.origin - cone.base;
-  const double so = glm::dot(ob, f.axis), sd = glm::dot(ray.direction, f.axis);
-  const Vec3 wo = ob - so * f.axis, wd = ray.direction - sd * f.axis;
-  const double ro = cone.baseRadius + f.slope * so, rd = f.slope * sd;
-  const double a = glm::dot(wd, wd) - rd * rd;
-  const double b = 2 * (glm::dot(wo, wd) - ro * rd);
-  const double c = glm::dot(wo, wo) - ro * ro;
-  double t0, t1;
-  if (std::abs(a) <= 1e-300) {
-    if (b == 0) return kInfinity;
+template <class Real>
+Real hitCone(const Cone& cone, const BasicRay<Real>& ray, Real tMax) {
+  const ConeFrame<Real> f = frameOf<Real>(cone);
+  const V<Real> ob = ray.origin - f.base;
+  const Real so = glm::dot(ob, f.axis), sd = glm::dot(ray.direction, f.axis);
+  const V<Real> wo = ob - so * f.axis, wd = ray.direction - sd * f.axis;
+  const Real ro = f.baseRadius + f.slope * so, rd = f.slope * sd;
+  const Real a = glm::dot(wd, wd) - rd * rd;
+  const Real b = 2 * (glm::dot(wo, wd) - ro * rd);
+  const Real c = glm::dot(wo, wo) - ro * ro;
+  Real t0, t1;
+  if (std::abs(a) <= std::numeric_limits<Real>::min()) {  // the ray runs along the cone's surface lines
+    if (b == 0) return kNone<Real>;
     t0 = t1 = -c / b;
   } else {
-    const double discriminant = b * b - 4 * a * c;
-    if (discriminant < 0) return kInfinity;
-    const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+    const Real discriminant = b * b - 4 * a * c;
+    if (discriminant < 0) return kNone<Real>;
+    const Real q = Real(-0.5) * (b + std::copysign(std::sqrt(discriminant), b));
     t0 = q / a;
     t1 = q != 0 ? c / q : t0;
   }
   if (t0 > t1) std::swap(t0, t1);
-  for (double t : {t0, t1}) {
+  for (Real t : {t0, t1}) {
     if (!(t > ray.tMin && t < tMax)) continue;
-    const double s = so + t * sd;
-    if (s >= 0 && s <= f.height && cone.baseRadius + f.slope * s >= 0) return t;
+    const Real s = so + t * sd;
+    if (s >= 0 && s <= f.height && f.baseRadius + f.slope * s >= 0) return t;
   }
-  return kInfinity;
+  return kNone<Real>;
 }
 
-Vec3 polygonNormal(const std::vector<Vec3>& v) {
-  return glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
+template <class Real>
+V<Real> polygonNormal(const std::vector<Vec3>& v) {
+  const V<Real> v0(v[0]);
+  return glm::normalize(glm::cross(V<Real>(v[1]) - v0, V<Real>(v[2]) - v0));
 }
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
 
 }  // namespace
 
-double nearestHit(const Object& object, const Ray& ray, double tMax) {
+template <class Real>
+Real nearestHit(const Object& object, const BasicRay<Real>& ray, std::type_identity_t<Real> tMax) {
   return std::visit(Overloaded{[&](const Sphere& s) { return hitSphere(s, ray, tMax); },
                                [&](const Cone& c) { return hitCone(c, ray, tMax); },
                                [&](const Polygon& p) { return hitFan(p.vertices, ray, tMax, nullptr).t; },
@@ -137,36 +150,39 @@ double nearestHit(const Object& object, const Ray& ray, double tMax) {
                     object.shape);
 }
 
-SurfacePoint surfaceAt(const Object& object, const Ray& ray, double t) {
-  SurfacePoint sp;
+template <class Real>
+BasicSurfacePoint<Real> surfaceAt(const Object& object, const BasicRay<Real>& ray,
+                                  std::type_identity_t<Real> t) {
+  BasicSurfacePoint<Real> sp;
   sp.point = ray.at(t);
   std::visit(Overloaded{[&](const Sphere& s) {
-                          sp.geometricNormal = glm::normalize(sp.point - s.center);
+                          sp.geometricNormal = glm::normalize(sp.point - V<Real>(s.center));
                           sp.shadingNormal = sp.geometricNormal;
                         },
                         [&](const Cone& c) {
-                          const ConeFrame f = frameOf(c);
-                          const Vec3 ob = sp.point - c.base;
-                          const Vec3 w = ob - glm::dot(ob, f.axis) * f.axis;
-                          const double len = glm::length(w);
-                          const Vec3 radial = len > 0 ? w / len : Vec3(0);
+                          const ConeFrame<Real> f = frameOf<Real>(c);
+                          const V<Real> ob = sp.point - f.base;
+                          const V<Real> w = ob - glm::dot(ob, f.axis) * f.axis;
+                          const Real len = glm::length(w);
+                          const V<Real> radial = len > 0 ? w / len : V<Real>(0);
                           sp.geometricNormal = glm::normalize(radial - f.slope * f.axis);
                           sp.shadingNormal = sp.geometricNormal;
                         },
                         [&](const Polygon& p) {
-                          sp.geometricNormal = polygonNormal(p.vertices);
+                          sp.geometricNormal = polygonNormal<Real>(p.vertices);
                           sp.shadingNormal = sp.geometricNormal;
                         },
                         [&](const Patch& p) {
-                          sp.geometricNormal = polygonNormal(p.vertices);
+                          sp.geometricNormal = polygonNormal<Real>(p.vertices);
                           std::size_t corner = 1;
-                          Ray wide = ray;
-                          wide.tMin = -kInfinity;
-                          const TriangleHit h = hitFan(p.vertices, wide, kInfinity, &corner);
-                          Vec3 n = p.normals[0];
-                          if (h.t < kInfinity)
-                            n = h.b0 * p.normals[0] + h.b1 * p.normals[corner] + h.b2 * p.normals[corner + 1];
-                          const double len = glm::length(n);
+                          BasicRay<Real> wide = ray;
+                          wide.tMin = -kNone<Real>;
+                          const TriangleHit<Real> h = hitFan(p.vertices, wide, kNone<Real>, &corner);
+                          V<Real> n(p.normals[0]);
+                          if (h.t < kNone<Real>)
+                            n = h.b0 * V<Real>(p.normals[0]) + h.b1 * V<Real>(p.normals[corner]) +
+                                h.b2 * V<Real>(p.normals[corner + 1]);
+                          const Real len = glm::length(n);
                           n = len > 0 ? n / len : sp.geometricNormal;
                           sp.shadingNormal = glm::dot(n, sp.geometricNormal) < 0 ? -n : n;
                         }},
@@ -177,6 +193,11 @@ SurfacePoint surfaceAt(const Object& object, const Ray& ray, double t) {
   }
   return sp;
 }
+
+template float nearestHit(const Object&, const BasicRay<float>&, float);
+template double nearestHit(const Object&, const BasicRay<double>&, double);
+template BasicSurfacePoint<float> surfaceAt(const Object&, const BasicRay<float>&, float);
+template BasicSurfacePoint<double> surfaceAt(const Object&, const BasicRay<double>&, double);
 
 Box boundsOf(const Object& object) {
   Box box;

@@ -1,7 +1,10 @@
 #pragma once
 // Ray-primitive intersection: the nearest crossing of a ray with one object's surface, and the surface
-// there. Pure functions of (ray, object), so every renderer and every node finds the same t.
+// there. Pure functions of (ray, object), so every renderer and every node finds the same t. Written once
+// over the ray's precision Real (float or double): the object's double coordinates are rounded to Real and
+// all the arithmetic is done in Real.
 #include <cstdint>
+#include <type_traits>
 
 #include "core/box.h"
 #include "core/ray.h"
@@ -9,23 +12,29 @@
 
 namespace raycube::core {
 
-// Nearest t with ray.tMin < t < tMax where the ray meets the object's surface; kInfinity when none.
-double nearestHit(const Object& object, const Ray& ray, double tMax);
+// Nearest t with ray.tMin < t < tMax where the ray meets the object's surface; infinity when none.
+template <class Real>
+Real nearestHit(const Object& object, const BasicRay<Real>& ray, std::type_identity_t<Real> tMax);
 
-struct SurfacePoint {
-  Vec3 point{0, 0, 0};
-  Vec3 geometricNormal{0, 0, 1};  // unit, outward (as the file orients the surface)
-  Vec3 shadingNormal{0, 0, 1};    // unit, same side as geometricNormal; interpolated on patches
+template <class Real>
+struct BasicSurfacePoint {
+  Vec3Of<Real> point{0, 0, 0};
+  Vec3Of<Real> geometricNormal{0, 0, 1};  // unit, outward (as the file orients the surface)
+  Vec3Of<Real> shadingNormal{0, 0, 1};    // unit, same side as geometricNormal; interpolated on patches
 };
+using SurfacePoint = BasicSurfacePoint<double>;
 
 // The surface at a t returned by nearestHit for the same ray.
-SurfacePoint surfaceAt(const Object& object, const Ray& ray, double t);
+template <class Real>
+BasicSurfacePoint<Real> surfaceAt(const Object& object, const BasicRay<Real>& ray,
+                                  std::type_identity_t<Real> t);
 
 // Padded world-space bounding box of the object.
 Box boundsOf(const Object& object);
 
 // Closest hit of a ray among candidates: smallest t, ties broken by the smaller object index, so that
 // any traversal order, any acceleration structure and any partition of space choose the same object.
+// t holds a float ray's t exactly.
 struct Hit {
   double t = kInfinity;
   std::uint32_t object = UINT32_MAX;

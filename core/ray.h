@@ -1,6 +1,7 @@
 #pragma once
 // A ray of the ray tree, carrying everything the paper's `rayon` message carries (section 3.5.2):
-// the original origin and direction keep the ray's identity wherever it travels.
+// the original origin and direction keep the ray's identity wherever it travels. Ray state is in the
+// precision the user chose (Real = float or double); Ray and TracedRay are the double ones.
 #include <cstdint>
 
 #include "core/vec.h"
@@ -10,28 +11,39 @@ namespace raycube::core {
 enum class RayKind : std::uint8_t { Eye = 0, Reflected = 1, Refracted = 2, Shadow = 3 };
 inline constexpr int kRayKinds = 4;
 
-struct Ray {
-  Vec3 origin{0, 0, 0};
-  Vec3 direction{0, 0, 1};  // unit length
-  double tMin = 0;          // eye rays: hither; spawned rays: 0 (their origin is already offset)
-  double tMax = 0;          // shadow rays: distance to the light (the paper's maxlum); others: infinity
+template <class Real>
+struct BasicRay {
+  Vec3Of<Real> origin{0, 0, 0};
+  Vec3Of<Real> direction{0, 0, 1};  // unit length
+  Real tMin = 0;                    // eye rays: hither; spawned rays: 0 (their origin is already offset)
+  Real tMax = 0;  // shadow rays: distance to the light (the paper's maxlum); others: infinity
 
-  Vec3 at(double t) const { return origin + t * direction; }
+  Vec3Of<Real> at(Real t) const { return origin + t * direction; }
+
+  // The same ray in another precision (rounded to nearest; exact towards double).
+  template <class To>
+  BasicRay<To> as() const {
+    return BasicRay<To>{Vec3Of<To>(origin), Vec3Of<To>(direction), To(tMin), To(tMax)};
+  }
 };
+using Ray = BasicRay<double>;
 
 // A ray with its place in the tree (Priol & Bouatouch 3.4): the cumulated Ks/Kt product `coeff`, and for a
 // shadow ray the light term it will deliver, scaled by the transmission it finds (the paper's att).
-struct TracedRay {
-  Ray ray;
-  Color weight{0, 0, 0};  // shadow rays only: coeff * light * (diffuse + specular)
-  double coeff = 1;       // cumulated product of Ks and T along the path
+template <class Real>
+struct BasicTracedRay {
+  BasicRay<Real> ray;
+  Vec3Of<Real> weight{0, 0, 0};  // shadow rays only: coeff * light * (diffuse + specular)
+  Real coeff = 1;                // cumulated product of Ks and T along the path
   std::uint32_t sample = 0;
   std::uint8_t depth = 1;  // the eye ray has depth 1 (SPD rule 7)
   RayKind kind = RayKind::Eye;
   std::uint16_t light = 0;  // shadow rays: which light they go to
 };
+using TracedRay = BasicTracedRay<double>;
 
-// A piece of a sample's colour: the host adds these up in any order (section 3.4).
+// A piece of a sample's colour: the host adds these up in any order (section 3.4), in double whatever the
+// precision of the rays.
 struct Contribution {
   std::uint32_t sample = 0;
   Color value{0, 0, 0};

@@ -10,19 +10,21 @@
 
 namespace raycube::core {
 
-struct RayTreeScratch {
-  RayOutcome outcome;
-  std::vector<TracedRay> pending;
+template <class Real>
+struct BasicRayTreeScratch {
+  BasicRayOutcome<Real> outcome;
+  std::vector<BasicTracedRay<Real>> pending;
   std::vector<Hit> crossed;
   std::vector<std::uint32_t> lastBlocker;  // per light: Haines' shadow cache
 };
+using RayTreeScratch = BasicRayTreeScratch<double>;
 
 // A database's transmission() leaves the opaque object that blocked a light ray in `crossed`; in a scene
 // without transmission that object is tried first for the next light ray to the same light (shadow
 // cache): it blocks again more often than not, and any blocker gives the same answer, 0.
-template <class Database>
-double shadowTransmission(const Whitted& shading, const Database& database, const TracedRay& ray,
-                          TraceCounters& counters, RayTreeScratch& scratch) {
+template <class Database, class Real>
+double shadowTransmission(const Whitted& shading, const Database& database, const BasicTracedRay<Real>& ray,
+                          TraceCounters& counters, BasicRayTreeScratch<Real>& scratch) {
   if (shading.sceneTransmits()) return database.transmission(ray.ray, counters, scratch.crossed);
   if (scratch.lastBlocker.size() <= ray.light) scratch.lastBlocker.resize(ray.light + 1u, UINT32_MAX);
   std::uint32_t& cached = scratch.lastBlocker[ray.light];
@@ -38,16 +40,18 @@ double shadowTransmission(const Whitted& shading, const Database& database, cons
 // Sees every ray of the tree once it is traced: where it ended (hit, light, or infinity) and the work it
 // cost.
 struct IgnoreRays {
-  void operator()(const TracedRay&, double /*tEnd*/, std::uint64_t /*work*/) const {}
+  template <class Real>
+  void operator()(const BasicTracedRay<Real>&, double /*tEnd*/, std::uint64_t /*work*/) const {}
 };
 
-template <class Database, class Observer = IgnoreRays>
-void traceRayTree(const Whitted& shading, const Database& database, const TracedRay& eye, Framebuffer& frame,
-                  TraceCounters& counters, RayTreeScratch& scratch, Observer&& observe = {}) {
+template <class Database, class Real, class Observer = IgnoreRays>
+void traceRayTree(const Whitted& shading, const Database& database, const BasicTracedRay<Real>& eye,
+                  Framebuffer& frame, TraceCounters& counters, BasicRayTreeScratch<Real>& scratch,
+                  Observer&& observe = {}) {
   scratch.pending.clear();
   scratch.pending.push_back(eye);
   while (!scratch.pending.empty()) {
-    const TracedRay ray = scratch.pending.back();
+    const BasicTracedRay<Real> ray = scratch.pending.back();
     scratch.pending.pop_back();
     ++counters.of(ray.kind);
     scratch.outcome.clear();
@@ -69,19 +73,21 @@ void traceRayTree(const Whitted& shading, const Database& database, const Traced
       ++counters.contributions;
       if (!frame.add(c)) ++counters.nonFinite;
     }
-    for (const TracedRay& r : scratch.outcome.spawned) scratch.pending.push_back(r);
+    for (const BasicTracedRay<Real>& r : scratch.outcome.spawned) scratch.pending.push_back(r);
   }
 }
 
-// The k-th eye ray of sample (sx, sy) as the root of its tree. Its coeff is 1 / (rays per sample): each of
-// a sample's rays brings that share of the sample's colour, as every contribution carries coeff.
-inline TracedRay eyeRayOf(const View& view, int sx, int sy, int k = 0) {
-  TracedRay r;
-  r.ray = view.eyeRay(sx, sy, k);
+// The k-th eye ray of sample (sx, sy) as the root of its tree, computed in double and rounded to Real. Its
+// coeff is 1 / (rays per sample): each of a sample's rays brings that share of the sample's colour, as every
+// contribution carries coeff.
+template <class Real = double>
+BasicTracedRay<Real> eyeRayOf(const View& view, int sx, int sy, int k = 0) {
+  BasicTracedRay<Real> r;
+  r.ray = view.eyeRay(sx, sy, k).template as<Real>();
   r.sample = view.sampleIndex(sx, sy);
   r.kind = RayKind::Eye;
   r.depth = 1;
-  r.coeff = 1.0 / view.raysPerSample();
+  r.coeff = Real(1.0 / view.raysPerSample());
   return r;
 }
 

@@ -6,6 +6,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/precision.h"
 #include "core/vec.h"
 
 namespace raycube::core {
@@ -92,6 +93,12 @@ struct Scene {
   std::vector<Object> objects;
 
   SceneFeatures features() const;
+  // Largest magnitude of any coordinate or radius in the scene (camera, lights, objects).
+  double largestCoordinate() const;
 };
+
+// Throws std::invalid_argument, with the limit and the way out, when the scene's coordinates are too large
+// for the arithmetic of `precision` (their squares would overflow): the render would be all NaN or misses.
+void requireRepresentable(const Scene& scene, Precision precision);
 
 }  // namespace raycube::core

@@ -1,11 +1,15 @@
 #pragma once
-// Vectors of the renderer: GLM double precision, one alias so the rest of core reads plainly.
+// Vectors of the renderer: GLM, one alias so the rest of core reads plainly. The scene, the view and the
+// machine's geometry are in double; ray state and intersection arithmetic use Vec3Of<Real> for the
+// precision the user chose (see core/precision.h).
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 namespace raycube::core {
 
-using Vec3 = glm::dvec3;
+template <class Real>
+using Vec3Of = glm::vec<3, Real, glm::defaultp>;
+using Vec3 = Vec3Of<double>;
 using Color = glm::dvec3;
 
 }  // namespace raycube::core

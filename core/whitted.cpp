@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/tolerances.h"
+#include "core/precision.h"
 
 namespace raycube::core {
 
@@ -14,52 +14,64 @@ Whitted::Whitted(const Scene& scene, ShadingOptions options) : scene_(scene), op
   sceneTransmits_ = scene.features().transmission;
 }
 
-Vec3 spawnOrigin(const Vec3& point, const Vec3& sideNormal, double travelled) {
-  const Vec3 a = glm::abs(point);
-  const double magnitude = std::max({a.x, a.y, a.z, std::abs(travelled)});
-  return point + (kSpawnOffsetRelative * magnitude) * sideNormal;
+template <class Real>
+Vec3Of<Real> spawnOrigin(const Vec3Of<Real>& point, const Vec3Of<Real>& sideNormal, Real travelled) {
+  const Vec3Of<Real> a = glm::abs(point);
+  const Real magnitude = std::max({a.x, a.y, a.z, std::abs(travelled)});
+  return point + (kSpawnOffsetRelativeOf<Real> * magnitude) * sideNormal;
 }
 
-void Whitted::shadeMiss(const TracedRay& ray, RayOutcome& out) const {
-  out.contributions.push_back(Contribution{ray.sample, ray.coeff * scene_.background});
+template <class Real>
+void Whitted::shadeMiss(const BasicTracedRay<Real>& ray, BasicRayOutcome<Real>& out) const {
+  out.contributions.push_back(Contribution{ray.sample, Color(Vec3Of<Real>(scene_.background) * ray.coeff)});
 }
 
-void Whitted::finishShadow(const TracedRay& ray, double transmission, RayOutcome& out) const {
-  if (transmission > 0) out.contributions.push_back(Contribution{ray.sample, transmission * ray.weight});
+template <class Real>
+void Whitted::finishShadow(const BasicTracedRay<Real>& ray, double transmission,
+                           BasicRayOutcome<Real>& out) const {
+  if (transmission > 0)
+    out.contributions.push_back(Contribution{ray.sample, transmission * Color(ray.weight)});
 }
 
-void Whitted::shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) const {
+// The shading arithmetic is in the ray's precision Real: materials and lights are rounded to it.
+template <class Real>
+void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRayOutcome<Real>& out) const {
+  using V = Vec3Of<Real>;
   const Object& object = scene_.objects[hit.object];
   const Material& m = scene_.materials[object.material];
-  const SurfacePoint sp = surfaceAt(object, ray.ray, hit.t);
-  const Vec3& d = ray.ray.direction;
+  const Real kd = Real(m.kd), ks = Real(m.ks), transmittance = Real(m.transmittance);
+  const Real tHit = Real(hit.t);
+  const BasicSurfacePoint<Real> sp = surfaceAt(object, ray.ray, tHit);
+  const V& d = ray.ray.direction;
   // The side of the surface the ray arrives on; normals are flipped to face it.
   const bool entering = glm::dot(sp.geometricNormal, d) < 0;
-  const Vec3 ng = entering ? sp.geometricNormal : -sp.geometricNormal;
-  Vec3 n = entering ? sp.shadingNormal : -sp.shadingNormal;
-  const Color diffuse = m.kd * m.color;
+  const V ng = entering ? sp.geometricNormal : -sp.geometricNormal;
+  V n = entering ? sp.shadingNormal : -sp.shadingNormal;
+  const V diffuse = kd * V(m.color);
 
-  if (m.kd > 0) out.contributions.push_back(Contribution{ray.sample, ray.coeff * ambient_ * diffuse});
+  if (m.kd > 0)
+    out.contributions.push_back(Contribution{ray.sample, Color(ray.coeff * Real(ambient_) * diffuse)});
 
-  const Vec3 toViewer = -d;
-  const Vec3 shadowOrigin = spawnOrigin(sp.point, ng, hit.t);
+  const V toViewer = -d;
+  const V shadowOrigin = spawnOrigin(sp.point, ng, tHit);
   for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
-    const Vec3 toLight = scene_.lights[i].position - sp.point;
-    const double distance = glm::length(toLight);
+    const V lightPosition(scene_.lights[i].position);
+    const V toLight = lightPosition - sp.point;
+    const Real distance = glm::length(toLight);
     if (distance == 0) continue;
-    const Vec3 l = toLight / distance;
-    const double nl = glm::dot(n, l);
+    const V l = toLight / distance;
+    const Real nl = glm::dot(n, l);
     if (nl <= 0) continue;  // SPD rule 10: no shadow ray when the normal faces away from the light
-    Color bracket = diffuse * nl;
+    V bracket = diffuse * nl;
     if (m.ks > 0) {
-      const double rv = glm::dot(2 * nl * n - l, toViewer);
-      if (rv > 0) bracket += Color(m.ks * std::pow(rv, m.shine));
+      const Real rv = glm::dot(2 * nl * n - l, toViewer);
+      if (rv > 0) bracket += V(ks * std::pow(rv, Real(m.shine)));
     }
-    const Color weight = ray.coeff * lightIntensity_[i] * bracket;
-    if (weight == Color(0)) continue;
-    TracedRay shadow;
+    const V weight = ray.coeff * V(lightIntensity_[i]) * bracket;
+    if (weight == V(0)) continue;
+    BasicTracedRay<Real> shadow;
     shadow.ray.origin = shadowOrigin;
-    const Vec3 fromOrigin = scene_.lights[i].position - shadowOrigin;
+    const V fromOrigin = lightPosition - shadowOrigin;
     shadow.ray.tMax = glm::length(fromOrigin);
     shadow.ray.direction = fromOrigin / shadow.ray.tMax;
     shadow.ray.tMin = 0;
@@ -73,21 +85,21 @@ void Whitted::shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) co
   }
 
   if (ray.depth >= options_.maxDepth) return;
-  double reflectCoeff = m.ks;
+  Real reflectCoeff = ks;
   if (m.transmittance > 0) {
     // Snell's law; eta is the ratio of indices across the surface in the ray's direction.
-    const double eta = entering ? 1.0 / m.ior : m.ior;
-    const double cosI = -glm::dot(n, d);
-    const double k = 1 - eta * eta * (1 - cosI * cosI);
+    const Real eta = entering ? Real(1.0 / m.ior) : Real(m.ior);
+    const Real cosI = -glm::dot(n, d);
+    const Real k = 1 - eta * eta * (1 - cosI * cosI);
     if (k < 0) {
-      reflectCoeff += m.transmittance;  // total internal reflection: the transmitted share is reflected
-    } else if (worthSpawning(ray.coeff * m.transmittance)) {
-      TracedRay refracted;
+      reflectCoeff += transmittance;  // total internal reflection: the transmitted share is reflected
+    } else if (worthSpawning(ray.coeff * transmittance)) {
+      BasicTracedRay<Real> refracted;
       refracted.ray.direction = glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n);
-      refracted.ray.origin = spawnOrigin(sp.point, -ng, hit.t);
+      refracted.ray.origin = spawnOrigin(sp.point, -ng, tHit);
       refracted.ray.tMin = 0;
-      refracted.ray.tMax = kInfinity;
-      refracted.coeff = ray.coeff * m.transmittance;
+      refracted.ray.tMax = std::numeric_limits<Real>::infinity();
+      refracted.coeff = ray.coeff * transmittance;
       refracted.sample = ray.sample;
       refracted.depth = std::uint8_t(ray.depth + 1);
       refracted.kind = RayKind::Refracted;
@@ -95,11 +107,11 @@ void Whitted::shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) co
     }
   }
   if (reflectCoeff > 0 && worthSpawning(ray.coeff * reflectCoeff)) {
-    TracedRay reflected;
+    BasicTracedRay<Real> reflected;
     reflected.ray.direction = glm::normalize(d + 2 * glm::dot(n, toViewer) * n);
-    reflected.ray.origin = spawnOrigin(sp.point, ng, hit.t);
+    reflected.ray.origin = spawnOrigin(sp.point, ng, tHit);
     reflected.ray.tMin = 0;
-    reflected.ray.tMax = kInfinity;
+    reflected.ray.tMax = std::numeric_limits<Real>::infinity();
     reflected.coeff = ray.coeff * reflectCoeff;
     reflected.sample = ray.sample;
     reflected.depth = std::uint8_t(ray.depth + 1);
@@ -107,5 +119,14 @@ void Whitted::shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) co
     out.spawned.push_back(reflected);
   }
 }
+
+#define RAYCUBE_WHITTED_FOR(Real)                                                                         \
+  template Vec3Of<Real> spawnOrigin(const Vec3Of<Real>&, const Vec3Of<Real>&, Real);                      \
+  template void Whitted::shadeMiss(const BasicTracedRay<Real>&, BasicRayOutcome<Real>&) const;            \
+  template void Whitted::finishShadow(const BasicTracedRay<Real>&, double, BasicRayOutcome<Real>&) const; \
+  template void Whitted::shadeHit(const BasicTracedRay<Real>&, const Hit&, BasicRayOutcome<Real>&) const;
+RAYCUBE_WHITTED_FOR(float)
+RAYCUBE_WHITTED_FOR(double)
+#undef RAYCUBE_WHITTED_FOR
 
 }  // namespace raycube::core

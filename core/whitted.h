@@ -29,24 +29,29 @@ struct ShadingOptions {
 };
 
 // What one ray produces: contributions for the host and rays for the tree. Reused to avoid allocation.
-struct RayOutcome {
+template <class Real>
+struct BasicRayOutcome {
   std::vector<Contribution> contributions;
-  std::vector<TracedRay> spawned;
+  std::vector<BasicTracedRay<Real>> spawned;
   void clear() {
     contributions.clear();
     spawned.clear();
   }
 };
+using RayOutcome = BasicRayOutcome<double>;
 
 class Whitted {
  public:
   Whitted(const Scene& scene, ShadingOptions options);
 
-  // Section 3.4: the local term at a hit and the rays it spawns.
-  void shadeHit(const TracedRay& ray, const Hit& hit, RayOutcome& out) const;
-  void shadeMiss(const TracedRay& ray, RayOutcome& out) const;
+  // Section 3.4: the local term at a hit and the rays it spawns, in the precision of the ray.
+  template <class Real>
+  void shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRayOutcome<Real>& out) const;
+  template <class Real>
+  void shadeMiss(const BasicTracedRay<Real>& ray, BasicRayOutcome<Real>& out) const;
   // A shadow ray that found `transmission` (product of T over the objects it crossed, in t order).
-  void finishShadow(const TracedRay& ray, double transmission, RayOutcome& out) const;
+  template <class Real>
+  void finishShadow(const BasicTracedRay<Real>& ray, double transmission, BasicRayOutcome<Real>& out) const;
 
   const Scene& scene() const { return scene_; }
   bool transmissive(std::uint32_t object) const { return transmittanceOf(object) > 0; }
@@ -67,7 +72,8 @@ class Whitted {
   bool sceneTransmits_;
 };
 
-// Offset a spawned ray's origin off the surface, scale-aware (see kSpawnOffsetRelative).
-Vec3 spawnOrigin(const Vec3& point, const Vec3& sideNormal, double travelled);
+// Offset a spawned ray's origin off the surface, scale-aware (see kSpawnOffsetRelativeOf).
+template <class Real>
+Vec3Of<Real> spawnOrigin(const Vec3Of<Real>& point, const Vec3Of<Real>& sideNormal, Real travelled);
 
 }  // namespace raycube::core

@@ -35,6 +35,8 @@ const std::map<std::string, node::LightRayMode> kLightRays{{"messages", node::Li
                                                            {"pyramid", node::LightRayMode::Pyramid}};
 const std::map<std::string, Balance> kBalances{{"uniform", Balance::Uniform}, {"bsp", Balance::Bsp}};
 const std::map<std::string, LoadMetric> kLoadMetrics{{"rays", LoadMetric::Rays}, {"cost", LoadMetric::Cost}};
+const std::map<std::string, core::Precision> kPrecisions{{"float", core::Precision::Float},
+                                                         {"double", core::Precision::Double}};
 const std::map<std::string, core::Sampling> kSamplings{{"centers", core::Sampling::Centers},
                                                        {"corners", core::Sampling::Corners}};
 
@@ -52,6 +54,7 @@ struct RenderCommand {
   int depth = 5;
   int spp = 1;
   double minWeight = 0;
+  std::string precision = "double";
   std::string mode = "machine";
   int threads = 0;
   std::string sampling = "centers";
@@ -130,6 +133,7 @@ int runRender(const RenderCommand& cmd) {
   settings.shading.maxDepth = cmd.depth;
   settings.shading.raysPerSample = cmd.spp;
   settings.shading.minWeight = cmd.minWeight;
+  settings.precision = kPrecisions.at(cmd.precision);
   settings.threads = cmd.threads;
   settings.progress = !cmd.quiet;
   std::optional<MachineReport> report;
@@ -174,6 +178,10 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
           "--min-weight", cmd.minWeight,
           "Adaptive depth: spawn no reflected/refracted ray whose Ks/Kt weight is below this (0 = off)")
       ->check(CLI::Range(0.0, 1.0));
+  render
+      ->add_option("--precision", cmd.precision,
+                   "float | double: ray state and intersection arithmetic (and so the ray message size)")
+      ->transform(CLI::IsMember(keysOf(kPrecisions), CLI::ignore_case));
   render->add_option("--threads", cmd.threads, "Worker threads for image-parallel (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
@@ -266,6 +274,8 @@ void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
 
 struct CompareCommand {
   std::string first, second;
+  std::string diffPath;
+  double gain = 1;
 };
 
 // `raycube compare A B`: how far apart two renders are; exit 0 only when bit-identical.
@@ -275,6 +285,7 @@ int runCompare(const CompareCommand& cmd) {
   const bool identical = core::bitIdentical(a, b);
   std::cout << fmt::format("rmse {:.3g}, psnr {:.2f} dB, max {:.3g}, pixels over 1/255: {}, {}\n", d.rmse,
                            d.psnr, d.maxAbs, d.pixelsOver, identical ? "bit-identical" : "different");
+  if (!cmd.diffPath.empty()) core::writeImage(core::differenceImage(a, b, cmd.gain), cmd.diffPath);
   return identical ? 0 : 1;
 }
 
@@ -283,6 +294,8 @@ void addCompareCommand(CLI::App& app, CompareCommand& cmd) {
       app.add_subcommand("compare", "Compare two images (EXR or PNG); exit 0 if bit-identical");
   compare->add_option("first", cmd.first, "First image")->required()->check(CLI::ExistingFile);
   compare->add_option("second", cmd.second, "Second image")->required()->check(CLI::ExistingFile);
+  compare->add_option("--diff", cmd.diffPath, "Write |first - second| (times --gain) to this EXR or PNG");
+  compare->add_option("--gain", cmd.gain, "Scale of the difference image")->check(CLI::Range(0.0, 1e12));
 }
 
 }  // namespace

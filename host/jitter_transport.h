@@ -10,18 +10,20 @@
 
 namespace raycube::host {
 
-class JitterTransport final : public node::Transport {
+template <class Real>
+class JitterTransport final : public node::BasicTransport<Real> {
  public:
-  JitterTransport(node::Transport& inner, unsigned seed) : inner_(inner), random_(seed) {}
+  using Message = node::BasicRayMessage<Real>;
+  JitterTransport(node::BasicTransport<Real>& inner, unsigned seed) : inner_(inner), random_(seed) {}
 
-  std::size_t trySend(int neighbour, std::span<const node::RayMessage> messages) override {
+  std::size_t trySend(int neighbour, std::span<const Message> messages) override {
     jitter();
     const std::size_t sent = inner_.trySend(
         neighbour, messages.subspan(0, std::min<std::size_t>(messages.size(), 1 + random_() % 4)));
     jitter();
     return sent;
   }
-  std::size_t receive(std::span<node::RayMessage> into) override {
+  std::size_t receive(std::span<Message> into) override {
     jitter();
     return inner_.receive(into.subspan(0, std::min<std::size_t>(into.size(), 1 + random_() % 4)));
   }
@@ -54,7 +56,7 @@ class JitterTransport final : public node::Transport {
     if (roll == 0) std::this_thread::sleep_for(std::chrono::microseconds(random_() % 50));
   }
 
-  node::Transport& inner_;
+  node::BasicTransport<Real>& inner_;
   std::minstd_rand random_;
 };
 

@@ -144,10 +144,9 @@ void mapOntoHypercube(const node::RegionMap& regions, const MachineSettings& mac
   out.hypercubeDimension = d.dimension;
 }
 
-}  // namespace
-
-RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings,
-                           const MachineSettings& machine, MachineReport* report) {
+template <class Real>
+RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& settings,
+                             const MachineSettings& machine, MachineReport* report) {
   const auto start = Clock::now();
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
@@ -178,28 +177,28 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   std::vector<node::EyeBox> boxes;
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
   const node::MachineContext context{scene, view, shading, lines, regions, boxes};
-  SharedMemoryMachine interconnect(regions, machine.queueCapacity);
+  SharedMemoryMachine<Real> interconnect(regions, machine.queueCapacity);
   std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, regions, lines, boxes, machine);
-  std::vector<std::unique_ptr<JitterTransport>> jitters;
-  std::vector<node::Transport*> transports;
+  std::vector<std::unique_ptr<JitterTransport<Real>>> jitters;
+  std::vector<node::BasicTransport<Real>*> transports;
   for (int id = 0; id < regions.processors(); ++id) {
     transports.push_back(&interconnect.endpoint(id));
     if (machine.jitterSeed > 0) {
-      jitters.push_back(
-          std::make_unique<JitterTransport>(*transports.back(), machine.jitterSeed * 7919u + unsigned(id)));
+      jitters.push_back(std::make_unique<JitterTransport<Real>>(*transports.back(),
+                                                                machine.jitterSeed * 7919u + unsigned(id)));
       transports.back() = jitters.back().get();
     }
   }
   // 3.2 steps 2-3: every processor subdivides its own region into cells, in its own thread; when all have
   // done so the host lets the synthesis phase begin.
-  std::vector<std::unique_ptr<node::LogicalProcessor>> processors(setups.size());
+  std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> processors(setups.size());
   std::latch subdivided(std::ptrdiff_t(setups.size()));
   std::latch synthesis(1);
   std::vector<std::thread> threads;
   for (std::size_t id = 0; id < setups.size(); ++id) {
     threads.emplace_back([&, id] {
       processors[id] =
-          std::make_unique<node::LogicalProcessor>(context, std::move(setups[id]), *transports[id]);
+          std::make_unique<node::LogicalProcessor<Real>>(context, std::move(setups[id]), *transports[id]);
       subdivided.count_down();
       synthesis.wait();
       processors[id]->run();
@@ -208,6 +207,7 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   subdivided.wait();
   RenderResult result;
   result.mode = "machine";
+  result.precision = core::kPrecisionOf<Real>;
   result.workers = regions.processors();
   result.preprocessSeconds = secondsSince(start);
 
@@ -245,6 +245,7 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
   MachineReport local;
   MachineReport& out = report ? *report : local;
   out.settings = machine;
+  out.messageBytes = sizeof(node::BasicRayMessage<Real>);
   out.estimatedLoad = estimateLoads(areas, load, machine.loadMetric);
   out.subsampledRays = load.raysTraced;
   mapOntoHypercube(regions, machine, out);
@@ -264,6 +265,16 @@ RenderResult renderMachine(const core::Scene& scene, const RenderSettings& setti
     for (const auto& pr : out.processors) result.counters.rays[k] += pr.node.finished[k];
   }
   return result;
+}
+
+}  // namespace
+
+RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings,
+                           const MachineSettings& machine, MachineReport* report) {
+  core::requireRepresentable(scene, settings.precision);
+  return core::withPrecision(settings.precision, [&]<class Real>() {
+    return renderMachineIn<Real>(scene, settings, machine, report);
+  });
 }
 
 }  // namespace raycube::host

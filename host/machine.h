@@ -49,7 +49,7 @@ struct MachineReport {
   int hypercubeDimension = 0;
   std::size_t adjacencyEdges = 0;
   std::vector<ProcessorReport> processors;
-  std::size_t messageBytes = sizeof(node::RayMessage);
+  std::size_t messageBytes = 0;  // sizeof the ray message in the render's precision
   std::uint64_t contributionsAccumulated = 0;
   std::uint32_t probes = 0;       // token rounds
   std::uint64_t tokenPasses = 0;  // token visits over all processors

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "core/precision.h"
 #include "core/trace_stats.h"
 
 namespace raycube::host {
@@ -14,6 +15,7 @@ struct RenderResult {
   double traceSeconds = 0;       // tracing and accumulation
   std::string mode;
   int workers = 1;
+  core::Precision precision = core::Precision::Double;
 };
 
 }  // namespace raycube::host

@@ -2,6 +2,7 @@
 // What the user asked for, shared by every rendering mode.
 #include <cstdint>
 
+#include "core/precision.h"
 #include "core/view.h"
 #include "core/whitted.h"
 
@@ -14,7 +15,8 @@ struct RenderSettings {
   int height = 512;
   core::Sampling sampling = core::Sampling::Centers;
   core::ShadingOptions shading;
-  int threads = 0;  // image-parallel workers; 0 = all hardware threads
+  core::Precision precision = core::Precision::Double;  // of ray state and intersection arithmetic
+  int threads = 0;                                      // image-parallel workers; 0 = all hardware threads
   bool progress = true;
 };
 

@@ -21,22 +21,22 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Traces sample rows [rowBegin, rowEnd) into the frame buffer.
-template <class Database>
+// Traces sample rows [rowBegin, rowEnd) into the frame buffer, with rays in precision Real.
+template <class Real, class Database>
 void traceRows(const core::View& view, const core::Whitted& shading, const Database& database, int rowBegin,
                int rowEnd, core::Framebuffer& frame, core::TraceCounters& counters, Progress& progress) {
-  core::RayTreeScratch scratch;
+  core::BasicRayTreeScratch<Real> scratch;
   for (int sy = rowBegin; sy < rowEnd; ++sy) {
     for (int sx = 0; sx < view.samplesX(); ++sx)
       for (int k = 0; k < view.raysPerSample(); ++k)
-        core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy, k), frame, counters, scratch);
+        core::traceRayTree(shading, database, core::eyeRayOf<Real>(view, sx, sy, k), frame, counters,
+                           scratch);
     progress.advance(std::uint64_t(view.samplesX()));
   }
 }
 
-}  // namespace
-
-RenderResult renderReference(const core::Scene& scene, const RenderSettings& settings) {
+template <class Real>
+RenderResult renderReferenceIn(const core::Scene& scene, const RenderSettings& settings) {
   const auto start = Clock::now();
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
@@ -45,28 +45,31 @@ RenderResult renderReference(const core::Scene& scene, const RenderSettings& set
   core::Framebuffer frame(view.samplesX(), view.samplesY());
   RenderResult result;
   result.mode = "reference";
+  result.precision = core::kPrecisionOf<Real>;
   result.preprocessSeconds = secondsSince(start);
   const auto traceStart = Clock::now();
   {
     Progress progress("reference", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
-    traceRows(view, shading, database, 0, view.samplesY(), frame, result.counters, progress);
+    traceRows<Real>(view, shading, database, 0, view.samplesY(), frame, result.counters, progress);
   }
   result.image = frame.resolve(view);
   result.traceSeconds = secondsSince(traceStart);
   return result;
 }
 
-RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings& settings) {
+template <class Real>
+RenderResult renderImageParallelIn(const core::Scene& scene, const RenderSettings& settings) {
   const auto start = Clock::now();
   std::optional<tbb::global_control> limit;
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
-  const core::Bvh database(scene, shading);
+  const core::BasicBvh<Real> database(scene, shading);
   core::Framebuffer frame(view.samplesX(), view.samplesY());
   RenderResult result;
   result.mode = "image-parallel";
+  result.precision = core::kPrecisionOf<Real>;
   result.workers = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   result.preprocessSeconds = secondsSince(start);
   const auto traceStart = Clock::now();
@@ -74,15 +77,30 @@ RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings&
   {
     Progress progress("image-parallel", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
     // Each sample row belongs to exactly one task, so frame buffer slots never have two writers.
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, view.samplesY(), 4), [&](const tbb::blocked_range<int>& rows) {
-          traceRows(view, shading, database, rows.begin(), rows.end(), frame, counters.local(), progress);
-        });
+    tbb::parallel_for(tbb::blocked_range<int>(0, view.samplesY(), 4),
+                      [&](const tbb::blocked_range<int>& rows) {
+                        traceRows<Real>(view, shading, database, rows.begin(), rows.end(), frame,
+                                        counters.local(), progress);
+                      });
   }
   counters.combine_each([&](const core::TraceCounters& c) { result.counters += c; });
   result.image = frame.resolve(view);
   result.traceSeconds = secondsSince(traceStart);
   return result;
+}
+
+}  // namespace
+
+RenderResult renderReference(const core::Scene& scene, const RenderSettings& settings) {
+  core::requireRepresentable(scene, settings.precision);
+  return core::withPrecision(settings.precision,
+                             [&]<class Real>() { return renderReferenceIn<Real>(scene, settings); });
+}
+
+RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings& settings) {
+  core::requireRepresentable(scene, settings.precision);
+  return core::withPrecision(settings.precision,
+                             [&]<class Real>() { return renderImageParallelIn<Real>(scene, settings); });
 }
 
 }  // namespace raycube::host

@@ -15,18 +15,20 @@ std::vector<queues::Doorbell*> rawBells(const std::vector<std::unique_ptr<queues
 
 }  // namespace
 
-class SharedMemoryMachine::Endpoint final : public node::Transport {
+template <class Real>
+class SharedMemoryMachine<Real>::Endpoint final : public node::BasicTransport<Real> {
  public:
+  using Message = node::BasicRayMessage<Real>;
   Endpoint(SharedMemoryMachine& machine, int id)
       : machine_(machine), id_(id), sender_(machine.channel_.sender(id)) {
     for (int n : machine.regions_.neighbours(id)) incoming_.push_back(machine.queue(n, id));
   }
 
-  std::size_t trySend(int neighbour, std::span<const node::RayMessage> messages) override {
+  std::size_t trySend(int neighbour, std::span<const Message> messages) override {
     return machine_.queue(id_, neighbour)->tryPushN(messages);
   }
   bool canSend(int neighbour) const override { return machine_.queue(id_, neighbour)->hasSpace(); }
-  std::size_t receive(std::span<node::RayMessage> into) override {
+  std::size_t receive(std::span<Message> into) override {
     std::size_t n = 0;
     const std::size_t count = incoming_.size();
     for (std::size_t k = 0; k < count && n < into.size(); ++k)
@@ -76,7 +78,8 @@ class SharedMemoryMachine::Endpoint final : public node::Transport {
   std::size_t next_ = 0;
 };
 
-SharedMemoryMachine::SharedMemoryMachine(const node::RegionMap& regions, std::size_t queueCapacity)
+template <class Real>
+SharedMemoryMachine<Real>::SharedMemoryMachine(const node::RegionMap& regions, std::size_t queueCapacity)
     : regions_(regions),
       bells_([&] {
         std::vector<std::unique_ptr<queues::Doorbell>> bells;
@@ -95,23 +98,30 @@ SharedMemoryMachine::SharedMemoryMachine(const node::RegionMap& regions, std::si
   for (int p = 0; p < processors; ++p) endpoints_.push_back(std::make_unique<Endpoint>(*this, p));
 }
 
-SharedMemoryMachine::~SharedMemoryMachine() = default;
+template <class Real>
+SharedMemoryMachine<Real>::~SharedMemoryMachine() = default;
 
-node::Transport& SharedMemoryMachine::endpoint(int processor) {
+template <class Real>
+node::BasicTransport<Real>& SharedMemoryMachine<Real>::endpoint(int processor) {
   return *endpoints_[processor];
 }
 
-RayQueue* SharedMemoryMachine::queue(int from, int to) const {
+template <class Real>
+typename SharedMemoryMachine<Real>::RayQueue* SharedMemoryMachine<Real>::queue(int from, int to) const {
   const std::vector<int>& n = regions_.neighbours(from);
   const auto k = std::size_t(std::lower_bound(n.begin(), n.end(), to) - n.begin());
   return outgoing_[from][k].get();
 }
 
-queues::QueueStats SharedMemoryMachine::outgoingStats(int processor, node::Face face) const {
+template <class Real>
+queues::QueueStats SharedMemoryMachine<Real>::outgoingStats(int processor, node::Face face) const {
   queues::QueueStats sum;
   for (int n : regions_.neighbours(processor))
     if (regions_.faceToward(processor, n) == face) sum += queue(processor, n)->stats();
   return sum;
 }
+
+template class SharedMemoryMachine<float>;
+template class SharedMemoryMachine<double>;
 
 }  // namespace raycube::host

@@ -14,19 +14,22 @@
 
 namespace raycube::host {
 
-using RayQueue = queues::SpscQueue<node::RayMessage, queues::Accounting::kOn>;
 using ContributionChannel = queues::HostChannel<core::Contribution, 256>;
 // Blocks a processor may have in flight to the host before it waits: enough for the host's batching pause.
 inline constexpr std::size_t kContributionBlocksPerProcessor = 32;
 
+// Real: the precision of the rays the FIFOs carry (node::BasicRayMessage<Real>).
+template <class Real>
 class SharedMemoryMachine {
  public:
+  using RayQueue = queues::SpscQueue<node::BasicRayMessage<Real>, queues::Accounting::kOn>;
+
   SharedMemoryMachine(const node::RegionMap& regions, std::size_t queueCapacity);
   SharedMemoryMachine(const SharedMemoryMachine&) = delete;
   SharedMemoryMachine& operator=(const SharedMemoryMachine&) = delete;
   ~SharedMemoryMachine();
 
-  node::Transport& endpoint(int processor);
+  node::BasicTransport<Real>& endpoint(int processor);
   ContributionChannel& hostChannel() { return channel_; }
   bool terminated() const { return terminated_.load(std::memory_order_acquire); }
   // Saturation of the FIFOs a processor sends into, summed per face of the processor.

@@ -16,9 +16,9 @@ double megaRaysPerSecond(const RenderResult& r) {
 
 std::string summaryText(const core::Scene& scene, const RenderResult& result) {
   const core::TraceCounters& c = result.counters;
-  std::string text = fmt::format("scene {} ({} objects, {} lights), {}x{}, mode {} ({} workers)\n",
+  std::string text = fmt::format("scene {} ({} objects, {} lights), {}x{}, mode {} ({} workers), {} rays\n",
                                  scene.name, scene.objects.size(), scene.lights.size(), result.image.width,
-                                 result.image.height, result.mode, result.workers);
+                                 result.image.height, result.mode, result.workers, nameOf(result.precision));
   text += fmt::format("  preprocessing {:.3f} s, tracing {:.3f} s\n", result.preprocessSeconds,
                       result.traceSeconds);
   text += fmt::format("  rays: eye {}, reflected {}, refracted {}, shadow {}, total {}\n",
@@ -39,6 +39,7 @@ nlohmann::json statsJson(const core::Scene& scene, const RenderResult& result) {
       {"image", {{"width", result.image.width}, {"height", result.image.height}}},
       {"mode", result.mode},
       {"workers", result.workers},
+      {"precision", nameOf(result.precision)},
       {"seconds", {{"preprocessing", result.preprocessSeconds}, {"tracing", result.traceSeconds}}},
       {"rays", rays},
       {"totalRays", c.totalRays()},

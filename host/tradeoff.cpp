@@ -95,8 +95,8 @@ std::string tradeoffTable(const std::vector<TradeoffRow>& rows) {
   return text;
 }
 
-std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const RenderSettings& base, int processors,
-                                             int runs) {
+std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const RenderSettings& base,
+                                             int processors, int runs) {
   std::vector<SubsampleRow> rows;
   for (int window : {16, 8, 4, 2, 1}) {
     MachineSettings machine;

@@ -43,8 +43,8 @@ struct SubsampleRow {
   double preprocessSeconds = 0;  // median
   double raysMaxOverMean = 0, raysMinOverMean = 0, costMaxOverMean = 0;
 };
-std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const RenderSettings& base, int processors,
-                                             int runs);
+std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const RenderSettings& base,
+                                             int processors, int runs);
 std::string subsampleTable(const std::vector<SubsampleRow>& rows);
 void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path);
 // Error (RMSE, log scale) against time, one polyline per knob in the colours of kKnobColors.

@@ -27,10 +27,12 @@ struct EyeFrameRay {
   Vec3 o;  // origin in the eye frame
   Vec3 d;  // direction in the eye frame
 
-  static EyeFrameRay of(const core::Ray& ray, const core::View& view) {
-    Vec3 d = view.directionToEye(ray.direction);
+  // A float ray is converted exactly to double: the walk is in double whatever the ray's precision.
+  template <class Real>
+  static EyeFrameRay of(const core::BasicRay<Real>& ray, const core::View& view) {
+    Vec3 d = view.directionToEye(Vec3(ray.direction));
     d.y = -d.y;
-    return EyeFrameRay{eyeFramePoint(view, ray.origin), d};
+    return EyeFrameRay{eyeFramePoint(view, Vec3(ray.origin)), d};
   }
 
   double zAt(double t) const { return o.z + t * d.z; }

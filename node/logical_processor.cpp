@@ -19,7 +19,9 @@ double secondsSince(Clock::time_point start) {
 
 }  // namespace
 
-LogicalProcessor::LogicalProcessor(const MachineContext& context, NodeSetup setup, Transport& transport)
+template <class Real>
+LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetup setup,
+                                         BasicTransport<Real>& transport)
     : context_(context),
       setup_(std::move(setup)),
       transport_(transport),
@@ -50,7 +52,8 @@ LogicalProcessor::LogicalProcessor(const MachineContext& context, NodeSetup setu
 }
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
-void LogicalProcessor::run() {
+template <class Real>
+void LogicalProcessor<Real>::run() {
   while (!transport_.terminated()) {
     bool progressed = flushOverflow();
     const std::size_t n = transport_.receive(inbox_);
@@ -63,7 +66,8 @@ void LogicalProcessor::run() {
   }
 }
 
-bool LogicalProcessor::shootNextPrimary() {
+template <class Real>
+bool LogicalProcessor<Real>::shootNextPrimary() {
   const int raysPerSample = context_.view.raysPerSample();
   if (nextPrimary_ >= area_.count() * raysPerSample) return false;
   const long long sample = nextPrimary_ / raysPerSample;
@@ -72,8 +76,8 @@ bool LogicalProcessor::shootNextPrimary() {
   const int sy = area_.y0 + int(sample / area_.width());
   ++nextPrimary_;
   if (k + 1 == raysPerSample) primariesShot_.store(sample + 1, std::memory_order_relaxed);
-  RayMessage m;
-  m.ray = core::eyeRayOf(context_.view, sx, sy, k);
+  Message m;
+  m.ray = core::eyeRayOf<Real>(context_.view, sx, sy, k);
   m.tEnter = m.ray.ray.tMin;
   m.destination = std::uint16_t(setup_.id);
   ++stats_.spawned[std::size_t(core::RayKind::Eye)];
@@ -83,9 +87,10 @@ bool LogicalProcessor::shootNextPrimary() {
 }
 
 // Rays spawned here that start in this region, depth first (keeps the local stack short).
-void LogicalProcessor::evaluateLocalRays() {
+template <class Real>
+void LogicalProcessor<Real>::evaluateLocalRays() {
   while (!local_.empty()) {
-    const RayMessage next = local_.back();
+    const Message next = local_.back();
     local_.pop_back();
     evaluate(next, false);
   }
@@ -93,9 +98,10 @@ void LogicalProcessor::evaluateLocalRays() {
 
 // Tests `objects` for the part [ta, tb) of the ray's interval this cell owns. Closest-hit rays stop at the
 // first interval holding a hit; light rays multiply the transmittances they cross and stop at an opaque one.
+template <class Real>
 template <class Cells>
-bool LogicalProcessor::visitInterval(const core::TracedRay& ray, double ta, double tb, const Cells& objects,
-                                     core::Hit& hit, double& attenuation) {
+bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, double tb, const Cells& objects,
+                                           core::Hit& hit, double& attenuation) {
   const core::Scene& scene = context_.scene;
   const double tLimit = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
   auto nearest = [&](std::uint32_t object) {
@@ -129,8 +135,9 @@ bool LogicalProcessor::visitInterval(const core::TracedRay& ray, double ta, doub
 
 // evaluate_ray of 3.5.2: follow the ray through this region's cells from where it entered; it ends here
 // (hit, light reached, or escaped) or leaves through a face towards the processor whose region it enters.
-void LogicalProcessor::evaluate(RayMessage m, bool primary) {
-  const core::TracedRay& ray = m.ray;
+template <class Real>
+void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
+  const TracedRay& ray = m.ray;
   ++stats_.processed.of(ray.kind);
   if (++rayStamp_ == 0) {  // stamps wrapped: forget every mailbox
     std::fill(mailboxStamp_.begin(), mailboxStamp_.end(), 0u);
@@ -187,7 +194,8 @@ void LogicalProcessor::evaluate(RayMessage m, bool primary) {
 
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of
 // its light's volume: traced here, in one piece, exactly as the reference traces it; no message.
-bool LogicalProcessor::tracedWhereItStarts(const RayMessage& m, double& transmission) {
+template <class Real>
+bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& transmission) {
   if (lightVolumes_.empty() || m.tEnter != m.ray.ray.tMin || m.attenuation != 1) return false;
   const core::Vec3 origin = eyeFramePoint(context_.view, m.ray.ray.origin);
   auto inside = [&](const core::Box& box) {
@@ -195,16 +203,18 @@ bool LogicalProcessor::tracedWhereItStarts(const RayMessage& m, double& transmis
       if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
     return true;
   };
-  const core::Bvh* volume = inside(setup_.lightSources.eyeBox)       ? &lightVolumes_[m.ray.light]
-                            : inside(setup_.rearLightSources.eyeBox) ? &rearLightVolumes_[m.ray.light]
-                                                                     : nullptr;
+  const core::BasicBvh<Real>* volume = inside(setup_.lightSources.eyeBox) ? &lightVolumes_[m.ray.light]
+                                       : inside(setup_.rearLightSources.eyeBox)
+                                           ? &rearLightVolumes_[m.ray.light]
+                                           : nullptr;
   if (volume == nullptr) return false;
   ++stats_.lightRaysTracedLocally;
   transmission = core::shadowTransmission(context_.shading, *volume, m.ray, stats_.processed, shadowScratch_);
   return true;
 }
 
-void LogicalProcessor::finishRay(const core::TracedRay& ray, const core::Hit& hit, double attenuation) {
+template <class Real>
+void LogicalProcessor<Real>::finishRay(const TracedRay& ray, const core::Hit& hit, double attenuation) {
   ++stats_.finished[std::size_t(ray.kind)];
   outcome_.clear();
   if (ray.kind == core::RayKind::Shadow)
@@ -217,15 +227,16 @@ void LogicalProcessor::finishRay(const core::TracedRay& ray, const core::Hit& hi
 }
 
 // 3.4: contributions go straight to the host; new rays start where they are born.
-void LogicalProcessor::deliver(const core::RayOutcome& outcome) {
+template <class Real>
+void LogicalProcessor<Real>::deliver(const core::BasicRayOutcome<Real>& outcome) {
   for (const core::Contribution& c : outcome.contributions) {
     ++stats_.processed.contributions;
     if (!std::isfinite(c.value.x + c.value.y + c.value.z)) ++stats_.processed.nonFinite;
     transport_.sendContribution(c);
   }
-  for (const core::TracedRay& spawned : outcome.spawned) {
+  for (const TracedRay& spawned : outcome.spawned) {
     ++stats_.spawned[std::size_t(spawned.kind)];
-    RayMessage m;
+    Message m;
     m.ray = spawned;
     m.tEnter = spawned.ray.tMin;
     const EyeFrameRay er = EyeFrameRay::of(spawned.ray, context_.view);
@@ -242,11 +253,12 @@ void LogicalProcessor::deliver(const core::RayOutcome& outcome) {
 
 // Communication task: never block on a full FIFO (the paper's deadlock, 2.2): keep the ray in a local
 // overflow list, in order, and go on consuming incoming rays, so a cycle of full queues always drains.
-void LogicalProcessor::send(RayMessage m) {
+template <class Real>
+void LogicalProcessor<Real>::send(Message m) {
   const int hop = context_.regions.nextHop(setup_.id, m.destination);
   m.face = std::uint8_t(opposite(context_.regions.faceToward(setup_.id, hop)));
-  OverflowList<RayMessage>& pending = overflow_[slotOf(hop)];
-  if (pending.empty() && transport_.trySend(hop, std::span<const RayMessage>(&m, 1)) == 1) {
+  OverflowList<Message>& pending = overflow_[slotOf(hop)];
+  if (pending.empty() && transport_.trySend(hop, std::span<const Message>(&m, 1)) == 1) {
     countSent(hop, m);
     return;
   }
@@ -255,23 +267,26 @@ void LogicalProcessor::send(RayMessage m) {
   stats_.overflowHighWater = std::max<std::uint64_t>(stats_.overflowHighWater, pending.size());
 }
 
-std::size_t LogicalProcessor::slotOf(int neighbour) const {
+template <class Real>
+std::size_t LogicalProcessor<Real>::slotOf(int neighbour) const {
   return std::size_t(std::lower_bound(neighbours_.begin(), neighbours_.end(), neighbour) -
                      neighbours_.begin());
 }
 
-void LogicalProcessor::countSent(int neighbour, const RayMessage& m) {
+template <class Real>
+void LogicalProcessor<Real>::countSent(int neighbour, const Message& m) {
   ++messageBalance_;  // EWD 998: counted when the ray enters the neighbour's FIFO
   ++stats_.sent[std::size_t(context_.regions.faceToward(setup_.id, neighbour))];
   ++stats_.messagesByKind[std::size_t(m.ray.kind)];
 }
 
-bool LogicalProcessor::flushOverflow() {
+template <class Real>
+bool LogicalProcessor<Real>::flushOverflow() {
   bool moved = false;
   for (std::size_t slot = 0; slot < overflow_.size(); ++slot) {
-    OverflowList<RayMessage>& pending = overflow_[slot];
+    OverflowList<Message>& pending = overflow_[slot];
     if (pending.empty()) continue;
-    const std::span<const RayMessage> waiting = pending.all();
+    const std::span<const Message> waiting = pending.all();
     const std::size_t n = transport_.trySend(neighbours_[slot], waiting);
     for (std::size_t k = 0; k < n; ++k) countSent(neighbours_[slot], waiting[k]);
     pending.pop_front(n);
@@ -280,13 +295,14 @@ bool LogicalProcessor::flushOverflow() {
   return moved;
 }
 
-void LogicalProcessor::onReceived(const RayMessage& m) {
+template <class Real>
+void LogicalProcessor<Real>::onReceived(const Message& m) {
   --messageBalance_;
   black_ = true;  // EWD 998: a receipt may have re-activated this node behind the token's back
   ++stats_.received[m.face];
   if (m.destination != setup_.id) {
     ++stats_.forwarded;
-    RayMessage onward = m;
+    Message onward = m;
     ++onward.hops;
     send(onward);
     return;
@@ -295,13 +311,15 @@ void LogicalProcessor::onReceived(const RayMessage& m) {
   evaluateLocalRays();
 }
 
-std::size_t LogicalProcessor::backlog() const {
+template <class Real>
+std::size_t LogicalProcessor<Real>::backlog() const {
   std::size_t waiting = 0;
   for (const auto& pending : overflow_) waiting += pending.size();
   return waiting;
 }
 
-bool LogicalProcessor::passive() const {
+template <class Real>
+bool LogicalProcessor<Real>::passive() const {
   if (nextPrimary_ < area_.count() * context_.view.raysPerSample() || !local_.empty()) return false;
   for (const auto& pending : overflow_)
     if (!pending.empty()) return false;
@@ -312,7 +330,8 @@ bool LogicalProcessor::passive() const {
 // sums every node's (sent - received); a white token returning to processor 0 with a zero sum, processor 0
 // white and passive, proves that every node is passive and no ray is in a FIFO. The paper's second phase
 // is kept: a node touches the token only once its primary rays are done and it has nothing to do.
-void LogicalProcessor::onIdle() {
+template <class Real>
+void LogicalProcessor<Real>::onIdle() {
   transport_.flushContributions();
   if (!holdingToken_ && transport_.receiveToken(token_)) {
     holdingToken_ = true;
@@ -345,5 +364,8 @@ void LogicalProcessor::onIdle() {
   });
   (blocked ? stats_.blockedSeconds : stats_.idleSeconds) += secondsSince(start);
 }
+
+template class LogicalProcessor<float>;
+template class LogicalProcessor<double>;
 
 }  // namespace raycube::node

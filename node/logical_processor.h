@@ -69,9 +69,13 @@ struct NodeStats {
   std::uint32_t probes = 0;  // node 0: token rounds started
 };
 
+// Real: the precision of the rays it traces and sends (--precision); its walk through cells is in double.
+template <class Real>
 class LogicalProcessor {
  public:
-  LogicalProcessor(const MachineContext& context, NodeSetup setup, Transport& transport);
+  using Message = BasicRayMessage<Real>;
+  using TracedRay = core::BasicTracedRay<Real>;
+  LogicalProcessor(const MachineContext& context, NodeSetup setup, BasicTransport<Real>& transport);
 
   void run();  // until the machine terminates
   const NodeStats& stats() const { return stats_; }
@@ -81,45 +85,45 @@ class LogicalProcessor {
  private:
   // Synthesis task
   bool shootNextPrimary();
-  void evaluate(RayMessage message, bool primary);
+  void evaluate(Message message, bool primary);
   void evaluateLocalRays();
-  void finishRay(const core::TracedRay& ray, const core::Hit& hit, double attenuation);
-  bool tracedWhereItStarts(const RayMessage& message, double& transmission);
+  void finishRay(const TracedRay& ray, const core::Hit& hit, double attenuation);
+  bool tracedWhereItStarts(const Message& message, double& transmission);
   template <class Cells>
-  bool visitInterval(const core::TracedRay& ray, double ta, double tb, const Cells& objects, core::Hit& hit,
+  bool visitInterval(const TracedRay& ray, double ta, double tb, const Cells& objects, core::Hit& hit,
                      double& attenuation);
-  void deliver(const core::RayOutcome& outcome);
+  void deliver(const core::BasicRayOutcome<Real>& outcome);
   // Communication task
-  void send(RayMessage message);
-  void countSent(int neighbour, const RayMessage& message);
+  void send(Message message);
+  void countSent(int neighbour, const Message& message);
   std::size_t slotOf(int neighbour) const;
   bool flushOverflow();
-  void onReceived(const RayMessage& message);
+  void onReceived(const Message& message);
   void onIdle();
   bool passive() const;
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
   const MachineContext& context_;
   NodeSetup setup_;
-  Transport& transport_;
+  BasicTransport<Real>& transport_;
   SampleRect area_;
   RegionCells cells_;
-  std::vector<core::Bvh> lightVolumes_;      // per light, when light rays are traced where they start
-  std::vector<core::Bvh> rearLightVolumes_;  // per light, for light rays starting behind the eye
+  std::vector<core::BasicBvh<Real>> lightVolumes_;  // per light, when light rays are traced where they start
+  std::vector<core::BasicBvh<Real>> rearLightVolumes_;  // per light, for light rays starting behind the eye
   long long nextPrimary_ = 0;
   std::atomic<long long> primariesShot_{0};
-  std::vector<RayMessage> local_;                   // rays spawned here, still to evaluate here
-  const std::vector<int>& neighbours_;              // processors across this region's faces
-  std::vector<OverflowList<RayMessage>> overflow_;  // per neighbour: rays its full FIFO refused
-  std::vector<RayMessage> inbox_;
-  core::RayOutcome outcome_;
+  std::vector<Message> local_;                   // rays spawned here, still to evaluate here
+  const std::vector<int>& neighbours_;           // processors across this region's faces
+  std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused
+  std::vector<Message> inbox_;
+  core::BasicRayOutcome<Real> outcome_;
   // Mailboxes: an object met again in a later cell of the same ray is not tested again. The cached t is
   // the object's nearest hit over the whole ray, the very number the reference renderer computes.
   std::vector<std::uint32_t> mailboxStamp_;
   std::vector<double> mailboxT_;
   std::uint32_t rayStamp_ = 0;
   std::vector<core::Hit> crossed_;
-  core::RayTreeScratch shadowScratch_;  // the shadow cache of light rays traced where they start
+  core::BasicRayTreeScratch<Real> shadowScratch_;  // the shadow cache of light rays traced where they start
   // Termination (Safra, EWD 998)
   std::int64_t messageBalance_ = 0;  // rays sent - rays received
   bool black_ = false;

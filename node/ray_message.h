@@ -27,13 +27,18 @@ inline Face opposite(Face face) {
   return face;
 }
 
-struct RayMessage {
-  core::TracedRay ray;
+// Ray state is in the precision Real of the render (--precision): 80 bytes in float, 128 in double. tEnter
+// and attenuation stay double: tEnter is where the sender's walk (in double) ended, and the reference
+// multiplies transmittances in double, so every chain of processors must too.
+template <class Real>
+struct BasicRayMessage {
+  core::BasicTracedRay<Real> ray;
   double tEnter = 0;              // the ray's interval continues from here in the receiving region
   double attenuation = 1;         // shadow rays: product of T over objects crossed so far, in t order
   std::uint16_t destination = 0;  // processor that owns the region the ray enters
   std::uint8_t face = 0;          // face of the receiver it arrives through (statistics)
   std::uint8_t hops = 0;          // forwardings on the way (non-adjacent destinations)
 };
+using RayMessage = BasicRayMessage<double>;
 
 }  // namespace raycube::node

@@ -20,15 +20,17 @@ struct Token {
   std::uint32_t round = 0;  // probes started by node 0
 };
 
-class Transport {
+template <class Real>
+class BasicTransport {
  public:
-  virtual ~Transport() = default;
+  using Message = BasicRayMessage<Real>;
+  virtual ~BasicTransport() = default;
 
   // Sends the longest prefix of `messages` the FIFO to that neighbouring processor has room for; returns
   // its length. The caller keeps the rest and tries again later.
-  virtual std::size_t trySend(int neighbour, std::span<const RayMessage> messages) = 0;
+  virtual std::size_t trySend(int neighbour, std::span<const Message> messages) = 0;
   // Up to into.size() rays from the incoming FIFOs; returns how many.
-  virtual std::size_t receive(std::span<RayMessage> into) = 0;
+  virtual std::size_t receive(std::span<Message> into) = 0;
   virtual bool anyIncoming() const = 0;
   virtual bool canSend(int neighbour) const = 0;
 
@@ -45,5 +47,6 @@ class Transport {
   // Sleep (after a short spin) until ready() holds; any arriving ray, token or termination re-checks it.
   virtual void waitUntil(const std::function<bool()>& ready) = 0;
 };
+using Transport = BasicTransport<double>;
 
 }  // namespace raycube::node

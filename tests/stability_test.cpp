@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/balls.h"
+#include "core/facing_mirrors.h"
 #include "core/image.h"
 #include "core/intersect.h"
 #include "core/nff_reader.h"
@@ -81,12 +82,31 @@ using raycube::testing_support::scaled;
 // ---- Renders and what every render must satisfy
 // ------------------------------------------------------------
 
-RenderSettings settingsOf(int width, int height, int maxDepth = 5) {
+RenderSettings settingsOf(int width, int height, int maxDepth = 5,
+                          core::Precision precision = core::Precision::Double) {
   RenderSettings s = settingsFor(1);
   s.width = width;
   s.height = height;
   s.shading.maxDepth = maxDepth;
+  s.precision = precision;
   return s;
+}
+
+// The suites below run in both precisions: float rays must meet the same properties (no NaN, the machine
+// equal to the reference bit for bit, every ray finished) as double ones.
+class PrecisionStability : public testing::TestWithParam<core::Precision> {
+ protected:
+  RenderSettings settingsOf(int width, int height, int maxDepth = 5) const {
+    return host::settingsOf(width, height, maxDepth, GetParam());
+  }
+};
+class StabilityGrazing : public PrecisionStability {};
+class StabilityRefraction : public PrecisionStability {};
+class StabilityRegions : public PrecisionStability {};
+class StabilityDegenerate : public PrecisionStability {};
+
+std::string precisionName(const testing::TestParamInfo<core::Precision>& info) {
+  return core::nameOf(info.param);
 }
 
 MachineSettings machineFor(int rows, int columns, node::LightRayMode lightRays = node::LightRayMode::Messages,
@@ -294,7 +314,7 @@ core::Scene contactPoint() {
   return scene;
 }
 
-TEST(StabilityGrazing, EyeInAPolygonsPlaneAndRaysAlongItsEdges) {
+TEST_P(StabilityGrazing, EyeInAPolygonsPlaneAndRaysAlongItsEdges) {
   const int side = sanitized() ? 17 : 33;
   const RenderSettings settings = settingsOf(side, side);
   const core::Scene scene = edgeOnPolygons(side);
@@ -304,7 +324,7 @@ TEST(StabilityGrazing, EyeInAPolygonsPlaneAndRaysAlongItsEdges) {
                        "edge-on polygons 3x5 pyramid");
 }
 
-TEST(StabilityGrazing, EyeRaysTangentToASphere) {
+TEST_P(StabilityGrazing, EyeRaysTangentToASphere) {
   const int side = sanitized() ? 19 : 37;
   const RenderSettings settings = settingsOf(side, side);
   for (bool transparent : {false, true}) {
@@ -321,7 +341,7 @@ TEST(StabilityGrazing, EyeRaysTangentToASphere) {
   }
 }
 
-TEST(StabilityGrazing, BigBallTouchingTheFloor) {
+TEST_P(StabilityGrazing, BigBallTouchingTheFloor) {
   const int side = sanitized() ? 16 : 40;
   const RenderSettings settings = settingsOf(side, side);
   const core::Scene scene = contactPoint();
@@ -365,7 +385,7 @@ core::Scene overlappingGlass(double ior) {
   return b.scene();
 }
 
-TEST(StabilityRefraction, GlassWithTheIndexOfAirIsInvisible) {
+TEST_P(StabilityRefraction, GlassWithTheIndexOfAirIsInvisible) {
   const int side = sanitized() ? 16 : 32;
   RenderSettings settings = settingsOf(side, side, 8);
   const RenderResult without = reference(glassInFront(false, 1.0), settings, "no glass");
@@ -378,7 +398,7 @@ TEST(StabilityRefraction, GlassWithTheIndexOfAirIsInvisible) {
   EXPECT_GT(core::compareImages(without.image, glass.image).pixelsOver, 0u);
 }
 
-TEST(StabilityRefraction, HighIndicesRefractAndTotallyReflectWithoutNaN) {
+TEST_P(StabilityRefraction, HighIndicesRefractAndTotallyReflectWithoutNaN) {
   const int side = sanitized() ? 16 : 32;
   const RenderSettings settings = settingsOf(side, side, 8);
   const RenderResult air = reference(overlappingGlass(1.0), settings, "overlapping glass ior 1");
@@ -401,7 +421,7 @@ TEST(StabilityRefraction, HighIndicesRefractAndTotallyReflectWithoutNaN) {
 // of it. Whichever side of Snell's test rounding puts it, the transmitted share T is carried on: by a
 // refracted ray, or by the reflected ray on total internal reflection (core/whitted.cpp), never both, never
 // neither, and never as NaN.
-TEST(StabilityRefraction, CriticalAngleFromInsideKeepsTheTransmittedShare) {
+TEST_P(StabilityRefraction, CriticalAngleFromInsideKeepsTheTransmittedShare) {
   for (double ks : {0.0, 0.25}) {
     for (double ior : {1.33, 1.5, 2.4}) {
       core::Scene scene;
@@ -487,7 +507,7 @@ core::Scene onTheBoundaries() {
   return b.scene();
 }
 
-TEST(StabilityRegions, GeometryAndLightsOnTheCentralBoundaries) {
+TEST_P(StabilityRegions, GeometryAndLightsOnTheCentralBoundaries) {
   const int side = sanitized() ? 16 : 48;
   const RenderSettings settings = settingsOf(side, side);
   const core::View view(onTheBoundaries().camera, side, side, core::Sampling::Centers);
@@ -521,7 +541,7 @@ core::Scene eyeInsideSphere(bool transparent) {
   return b.scene();
 }
 
-TEST(StabilityRegions, EyeInsideAnOpaqueOrTransparentSphere) {
+TEST_P(StabilityRegions, EyeInsideAnOpaqueOrTransparentSphere) {
   const int side = sanitized() ? 16 : 32;
   const RenderSettings settings = settingsOf(side, side);
   for (bool transparent : {false, true}) {
@@ -551,7 +571,7 @@ core::Scene straddlingTheEyePlane() {
   return b.scene();
 }
 
-TEST(StabilityRegions, ObjectsStraddlingTheEyePlane) {
+TEST_P(StabilityRegions, ObjectsStraddlingTheEyePlane) {
   const int side = sanitized() ? 16 : 32;
   const RenderSettings settings = settingsOf(side, side);
   const core::Scene scene = straddlingTheEyePlane();
@@ -563,7 +583,7 @@ TEST(StabilityRegions, ObjectsStraddlingTheEyePlane) {
 
 // ---- 5. Degenerate inputs ---------------------------------------------------------------------------------
 
-TEST(StabilityDegenerate, DepthOneShootsOnlyEyeAndShadowRays) {
+TEST_P(StabilityDegenerate, DepthOneShootsOnlyEyeAndShadowRays) {
   const int side = sanitized() ? 16 : 24;
   const RenderSettings settings = settingsOf(side, side, 1);
   const core::Scene scene = core::makeBalls(2);
@@ -576,24 +596,12 @@ TEST(StabilityDegenerate, DepthOneShootsOnlyEyeAndShadowRays) {
 // Two facing mirrors z = -1 and z = 1 with the eye between them: a ray that is not parallel to them bounces
 // until the depth limit. With Ks = 1 nothing decays; with Ks = 1e-5 the 64th bounce's coefficient is
 // 1e-315, deep in the subnormals: it must underflow towards 0, never become NaN or Inf.
-core::Scene facingMirrors(double ks) {
-  SceneBuilder b(Vec3(0, 0, 0.3), Vec3(0, 10, 0.3), Vec3(0, 0, 1), 60);
-  const double e = 1e3;
-  b.material(Color(0.8, 0.9, 1.0), 0.1, ks, 50)
-      .polygon({Vec3(-e, -e, -1), Vec3(e, -e, -1), Vec3(e, e, -1), Vec3(-e, e, -1)})
-      .polygon({Vec3(-e, -e, 1), Vec3(-e, e, 1), Vec3(e, e, 1), Vec3(e, -e, 1)})
-      .material(Color(0.8, 0.3, 0.3), 0.9, 0)
-      .sphere(Vec3(0.5, 6, 0), 0.5)
-      .light(Vec3(0, 3, 0))
-      .light(Vec3(2, -2, 0.5));
-  return b.scene();
-}
 
-TEST(StabilityDegenerate, SixtyFourBouncesBetweenFacingMirrors) {
+TEST_P(StabilityDegenerate, SixtyFourBouncesBetweenFacingMirrors) {
   const int side = 16;
   for (double ks : {1.0, 0.999, 1e-5}) {
     const std::string label = "mirrors Ks " + testing::PrintToString(ks);
-    const core::Scene scene = facingMirrors(ks);
+    const core::Scene scene = core::makeFacingMirrors(ks);
     const RenderResult deep = reference(scene, settingsOf(side, side, 64), label + " depth 64");
     const RenderResult shallower = reference(scene, settingsOf(side, side, 63), label + " depth 63");
     // The 64th level exists: one more level adds reflected rays.
@@ -604,7 +612,7 @@ TEST(StabilityDegenerate, SixtyFourBouncesBetweenFacingMirrors) {
   }
 }
 
-TEST(StabilityDegenerate, OnePixelAndOnePixelWideImages) {
+TEST_P(StabilityDegenerate, OnePixelAndOnePixelWideImages) {
   const core::Scene scene = core::makeBalls(2);
   const int length = sanitized() ? 512 : 4096;
   for (auto [width, height] : std::vector<std::pair<int, int>>{{1, 1}, {1, length}, {length, 1}}) {
@@ -618,7 +626,7 @@ TEST(StabilityDegenerate, OnePixelAndOnePixelWideImages) {
   }
 }
 
-TEST(StabilityDegenerate, MoreUniformProcessorsThanPixelRowsOrColumnsIsRejected) {
+TEST_P(StabilityDegenerate, MoreUniformProcessorsThanPixelRowsOrColumnsIsRejected) {
   const core::Scene scene = core::makeBalls(1);
   const RenderSettings settings = settingsOf(8, 8);
   EXPECT_THROW(renderMachine(scene, settings, machineFor(9, 1)), std::invalid_argument);
@@ -631,7 +639,7 @@ TEST(StabilityDegenerate, MoreUniformProcessorsThanPixelRowsOrColumnsIsRejected)
 
 // Two identical spheres of different colours: the tie rule (equal t, smaller object index) shows only the
 // first, everywhere, on every renderer.
-TEST(StabilityDegenerate, CoincidentSpheresShowTheFirstOnly) {
+TEST_P(StabilityDegenerate, CoincidentSpheresShowTheFirstOnly) {
   const int side = sanitized() ? 16 : 32;
   const RenderSettings settings = settingsOf(side, side);
   auto scene = [](bool twice) {
@@ -664,7 +672,7 @@ core::Scene lampInABox(bool enclosed, Color lampColor) {
   return b.light(Vec3(4, -4, 6), Color(0.7)).light(Vec3(1, 0, 1), lampColor).scene();
 }
 
-TEST(StabilityDegenerate, LightInsideAnOpaqueSphereLightsNothingOutside) {
+TEST_P(StabilityDegenerate, LightInsideAnOpaqueSphereLightsNothingOutside) {
   const int side = sanitized() ? 16 : 32;
   const RenderSettings settings = settingsOf(side, side);
   const core::Scene lit = lampInABox(true, Color(1));
@@ -678,7 +686,7 @@ TEST(StabilityDegenerate, LightInsideAnOpaqueSphereLightsNothingOutside) {
   expectMachineMatchesInEveryLightMode(lit, settings, 2, 2, enclosed, "lamp enclosed");
 }
 
-TEST(StabilityDegenerate, ZeroRadiusAndZeroAreaAreRejected) {
+TEST_P(StabilityDegenerate, ZeroRadiusAndZeroAreaAreRejected) {
   const std::string header =
       "v\nfrom 0 -5 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0.01\nresolution 16 16\n"
       "l 1 -3 4\nf 1 0.5 0.5 0.8 0 0 0 0\n";  // 9 lines
@@ -698,6 +706,15 @@ TEST(StabilityDegenerate, ZeroRadiusAndZeroAreaAreRejected) {
     EXPECT_EQ(e.line(), 10) << e.what();
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Precisions, StabilityGrazing,
+                         testing::Values(core::Precision::Double, core::Precision::Float), precisionName);
+INSTANTIATE_TEST_SUITE_P(Precisions, StabilityRefraction,
+                         testing::Values(core::Precision::Double, core::Precision::Float), precisionName);
+INSTANTIATE_TEST_SUITE_P(Precisions, StabilityRegions,
+                         testing::Values(core::Precision::Double, core::Precision::Float), precisionName);
+INSTANTIATE_TEST_SUITE_P(Precisions, StabilityDegenerate,
+                         testing::Values(core::Precision::Double, core::Precision::Float), precisionName);
 
 }  // namespace
 }  // namespace raycube::host

@@ -1,0 +1,41 @@
+#pragma once
+// The arithmetic of ray state and intersection tests, chosen at run time (--precision). The tracer is
+// written once over a type Real; the renderers instantiate it for float and double and dispatch here.
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace raycube::core {
+
+enum class Precision : std::uint8_t { Float, Double };
+
+inline const char* nameOf(Precision precision) {
+  return precision == Precision::Float ? "float" : "double";
+}
+
+// Calls visit.template operator()<Real>() with Real = float or double.
+template <class Visit>
+decltype(auto) withPrecision(Precision precision, Visit&& visit) {
+  if (precision == Precision::Float) return std::forward<Visit>(visit).template operator()<float>();
+  return std::forward<Visit>(visit).template operator()<double>();
+}
+
+template <class Real>
+inline constexpr Precision kPrecisionOf = sizeof(Real) == sizeof(float) ? Precision::Float
+                                                                        : Precision::Double;
+
+// Spawned rays start off the surface by this many units of the hit point's magnitude (max-norm, or the
+// distance travelled when larger), in the spirit of Wachter & Binder (Ray Tracing Gems ch. 6): far above the
+// intersection error of the precision, far below any feature. Double: 2^-32, about 2^20 ulps. Float: 2^-14,
+// about 2^10 ulps (float has too few bits for 2^20 ulps to stay below a feature).
+template <class Real>
+inline constexpr Real kSpawnOffsetRelativeOf = sizeof(Real) == sizeof(float) ? Real(0x1p-14) : Real(0x1p-32);
+
+// Squares of coordinates must stay finite and normal: the largest scene coordinate (in magnitude) a
+// precision accepts, with room for the sums of squares in the intersection tests.
+template <class Real>
+inline constexpr double kLargestCoordinateOf = sizeof(Real) == sizeof(float) ? 0x1p60 : 0x1p500;
+
+}  // namespace raycube::core
