@@ -33,9 +33,10 @@ inline constexpr Precision kPrecisionOf = sizeof(Real) == sizeof(float) ? Precis
 template <class Real>
 inline constexpr Real kSpawnOffsetRelativeOf = sizeof(Real) == sizeof(float) ? Real(0x1p-14) : Real(0x1p-32);
 
-// Squares of coordinates must stay finite and normal: the largest scene coordinate (in magnitude) a
-// precision accepts, with room for the sums of squares in the intersection tests.
+// Intersection tests form products of up to three coordinates (the watertight triangle test's scaled t):
+// they stay normal and finite for coordinates within [2^-kSafeExponent, 2^kSafeExponent]. A scene outside
+// is rescaled by a power of two before tracing (see rescaledFor in core/scene.h).
 template <class Real>
-inline constexpr double kLargestCoordinateOf = sizeof(Real) == sizeof(float) ? 0x1p60 : 0x1p500;
+inline constexpr int kSafeExponentOf = sizeof(Real) == sizeof(float) ? 8 : 64;
 
 }  // namespace raycube::core

@@ -1,10 +1,7 @@
 #include "core/scene.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "core/overloaded.h"
 
@@ -54,15 +51,39 @@ double Scene::largestCoordinate() const {
   return m;
 }
 
-void requireRepresentable(const Scene& scene, Precision precision) {
-  const double limit = withPrecision(precision, []<class Real>() { return kLargestCoordinateOf<Real>; });
+Scene scaledBy(Scene scene, double factor) {
+  scene.camera.from *= factor;
+  scene.camera.at *= factor;
+  scene.camera.hither *= factor;
+  for (Light& light : scene.lights) light.position *= factor;
+  for (Object& object : scene.objects)
+    std::visit(Overloaded{[&](Sphere& s) {
+                            s.center *= factor;
+                            s.radius *= factor;
+                          },
+                          [&](Cone& c) {
+                            c.base *= factor;
+                            c.apex *= factor;
+                            c.baseRadius *= factor;
+                            c.apexRadius *= factor;
+                          },
+                          [&](Polygon& p) {
+                            for (Vec3& v : p.vertices) v *= factor;
+                          },
+                          [&](Patch& p) {  // vertices only, never the normals
+                            for (Vec3& v : p.vertices) v *= factor;
+                          }},
+               object.shape);
+  return scene;
+}
+
+std::optional<Scene> rescaledFor(const Scene& scene, Precision precision) {
+  const int safe = withPrecision(precision, []<class Real>() { return kSafeExponentOf<Real>; });
   const double largestCoordinate = scene.largestCoordinate();
-  if (!(largestCoordinate <= limit))
-    throw std::invalid_argument(fmt::format(
-        "{}: a coordinate of magnitude {:g} is too large for --precision {} (at most {:g}, so that squared "
-        "distances stay finite){}",
-        scene.name.empty() ? "scene" : scene.name, largestCoordinate, nameOf(precision), limit,
-        precision == Precision::Float ? "; use --precision double" : ""));
+  if (!(largestCoordinate > 0) || !std::isfinite(largestCoordinate)) return std::nullopt;
+  const int exponent = std::ilogb(largestCoordinate);
+  if (exponent >= -safe && exponent <= safe) return std::nullopt;
+  return scaledBy(scene, std::ldexp(1.0, -exponent));
 }
 
 }  // namespace raycube::core

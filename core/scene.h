@@ -2,6 +2,7 @@
 // The scene as NFF describes it (shared/spd/NFF.TXT): one camera, a background, positional lights,
 // materials ("f" lines) and primitives. The renderers and the machine read only this.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -97,8 +98,14 @@ struct Scene {
   double largestCoordinate() const;
 };
 
-// Throws std::invalid_argument, with the limit and the way out, when the scene's coordinates are too large
-// for the arithmetic of `precision` (their squares would overflow): the render would be all NaN or misses.
-void requireRepresentable(const Scene& scene, Precision precision);
+// Every length of the scene times `factor`: camera position, target and hither, lights, and all geometry.
+// Directions (up, patch normals), angles, colours and materials are unit-free and stay.
+Scene scaledBy(Scene scene, double factor);
+
+// The scene rescaled by a power of two (exact) so that its largest coordinate is about 1, when the
+// arithmetic of `precision` needs it: float squares and cubes of coordinates leave float's range from about
+// 1e9 and 1e-13 (normals overflow, triangle tests underflow), double's from about 1e100. Whitted shading
+// has no distance term, so the picture does not change; nullopt when the scene is fine as it is.
+std::optional<Scene> rescaledFor(const Scene& scene, Precision precision);
 
 }  // namespace raycube::core

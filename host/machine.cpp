@@ -13,6 +13,7 @@
 #include "host/bsp_partition.h"
 #include "host/hypercube_mapping.h"
 #include "host/jitter_transport.h"
+#include "host/precision_dispatch.h"
 #include "host/progress.h"
 #include "host/shared_memory_transport.h"
 #include "queues/wait.h"
@@ -271,9 +272,8 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
 
 RenderResult renderMachine(const core::Scene& scene, const RenderSettings& settings,
                            const MachineSettings& machine, MachineReport* report) {
-  core::requireRepresentable(scene, settings.precision);
-  return core::withPrecision(settings.precision, [&]<class Real>() {
-    return renderMachineIn<Real>(scene, settings, machine, report);
+  return renderInPrecision(scene, settings.precision, [&]<class Real>(const core::Scene& traced) {
+    return renderMachineIn<Real>(traced, settings, machine, report);
   });
 }
 

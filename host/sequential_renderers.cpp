@@ -11,6 +11,7 @@
 #include "core/brute_force.h"
 #include "core/bvh.h"
 #include "core/ray_tree.h"
+#include "host/precision_dispatch.h"
 #include "host/progress.h"
 
 namespace raycube::host {
@@ -92,15 +93,15 @@ RenderResult renderImageParallelIn(const core::Scene& scene, const RenderSetting
 }  // namespace
 
 RenderResult renderReference(const core::Scene& scene, const RenderSettings& settings) {
-  core::requireRepresentable(scene, settings.precision);
-  return core::withPrecision(settings.precision,
-                             [&]<class Real>() { return renderReferenceIn<Real>(scene, settings); });
+  return renderInPrecision(scene, settings.precision, [&]<class Real>(const core::Scene& traced) {
+    return renderReferenceIn<Real>(traced, settings);
+  });
 }
 
 RenderResult renderImageParallel(const core::Scene& scene, const RenderSettings& settings) {
-  core::requireRepresentable(scene, settings.precision);
-  return core::withPrecision(settings.precision,
-                             [&]<class Real>() { return renderImageParallelIn<Real>(scene, settings); });
+  return renderInPrecision(scene, settings.precision, [&]<class Real>(const core::Scene& traced) {
+    return renderImageParallelIn<Real>(traced, settings);
+  });
 }
 
 }  // namespace raycube::host

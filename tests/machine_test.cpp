@@ -258,6 +258,15 @@ TEST_P(MachineSceneTest, MatchesReference) {
     renderAndCompare(scene, reference, settings, machineFor(grid, capacity),
                      c.file + " " + std::to_string(side) + "px " + gridName(grid) + " capacity " +
                          std::to_string(capacity));
+  // The same with float rays: another image, but the same one everywhere.
+  RenderSettings floats = settings;
+  floats.precision = core::Precision::Float;
+  const RenderResult floatReference = renderReference(scene, floats);
+  EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, floats).image, floatReference.image))
+      << c.file << " float image-parallel";
+  for (const auto& [grid, capacity] : {std::pair{Grid{3, 5}, 8}, std::pair{Grid{8, 8}, 1}})
+    renderAndCompare(scene, floatReference, floats, machineFor(grid, std::size_t(capacity)),
+                     c.file + " float " + gridName(grid) + " capacity " + std::to_string(capacity));
 }
 
 std::vector<SceneCase> sceneCases() {

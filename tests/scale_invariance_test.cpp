@@ -18,15 +18,12 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/sequential_renderers.h"
-#include "scene_scaling.h"
 #include "test_support.h"
 
 namespace raycube::host {
 namespace {
 
 using testing_support::sanitized;
-
-using raycube::testing_support::scaled;
 
 // Near the point where the big ball of the sphereflake rests on the floor, (0, 0, -0.5): two surfaces
 // meeting at a grazing angle, lit floor in front, the shadowed wedge between floor and ball, and the ball's
@@ -100,7 +97,7 @@ TEST_P(ScaleInvariance, SameImageAsAtUnitScale) {
   const int side = sanitized() ? 32 : 64;
   const core::Scene base = sceneByName(GetParam().scene);
   const RenderResult unit = render(base, side);
-  const RenderResult other = render(scaled(base, GetParam().factor), side);
+  const RenderResult other = render(core::scaledBy(base, GetParam().factor), side);
   EXPECT_EQ(firstNonFinitePixel(other.image), -1);
   EXPECT_EQ(other.counters.nonFinite, 0u);
   const core::ImageDifference diff = core::compareImages(unit.image, other.image);
@@ -141,7 +138,7 @@ TEST(ScaleInvariance, ReferenceAndBvhAgreeAtLargeAndSmallScale) {
   settings.height = side;
   settings.progress = false;
   for (double factor : {1e-4, 1e6}) {
-    const core::Scene scene = scaled(core::makeBalls(2), factor);
+    const core::Scene scene = core::scaledBy(core::makeBalls(2), factor);
     EXPECT_TRUE(core::bitIdentical(renderReference(scene, settings).image,
                                    renderImageParallel(scene, settings).image))
         << "scale " << factor;
@@ -199,7 +196,7 @@ std::string describe(const std::vector<Speckle>& speckles) {
 class ContactPoint : public testing::TestWithParam<double> {};
 
 TEST_P(ContactPoint, ShadesWithoutSpeckles) {
-  const RenderResult result = render(scaled(contactNeighbourhood(), GetParam()), 64);
+  const RenderResult result = render(core::scaledBy(contactNeighbourhood(), GetParam()), 64);
   ASSERT_EQ(firstNonFinitePixel(result.image), -1);
   const std::vector<Speckle> speckles = findSpeckles(result.image);
   EXPECT_TRUE(speckles.empty()) << speckles.size() << " isolated pixels:" << describe(speckles);

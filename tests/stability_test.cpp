@@ -25,7 +25,6 @@
 #include "host/machine.h"
 #include "host/sequential_renderers.h"
 #include "machine_test_support.h"
-#include "scene_scaling.h"
 
 namespace raycube::host {
 namespace {
@@ -76,8 +75,6 @@ class SceneBuilder {
   std::uint32_t currentMaterial() const { return std::uint32_t(scene_.materials.size() - 1); }
   core::Scene scene_;
 };
-
-using raycube::testing_support::scaled;
 
 // ---- Renders and what every render must satisfy
 // ------------------------------------------------------------
@@ -218,7 +215,7 @@ TEST(StabilityScale, Balls2FromMicroToMegaRendersTheUnitScaleImageOnBothRenderer
       sanitized() ? std::vector<double>{1e-6, 1e6} : std::vector<double>{1e-6, 1e-3, 1.0, 1e3, 1e6};
   for (double factor : factors) {
     const std::string label = "balls2 x" + testing::PrintToString(factor);
-    const core::Scene scene = scaled(base, factor);
+    const core::Scene scene = core::scaledBy(base, factor);
     const RenderResult ref = reference(scene, settings, label);
     const core::ImageDifference diff = core::compareImages(unit.image, ref.image);
     EXPECT_LE(diff.maxAbs, core::kOneSrgbLevel)
