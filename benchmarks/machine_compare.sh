@@ -11,7 +11,7 @@ runs=${RUNS:-7}
 scene_args=(render --balls 2 --size 512x512 --depth 5 -q -o /tmp/raycube_machine_compare.png)
 declare -A times
 configs=("image-parallel:--mode image-parallel --threads 2" "4x4:--procs 4x4 $*" "8x8:--procs 8x8 $*")
-now() { date +%s.%N; }
+source "$(dirname "$0")/timing.sh"
 for ((run = 1; run <= runs; ++run)); do
   for config in "${configs[@]}"; do
     name=${config%%:*}
@@ -21,7 +21,6 @@ for ((run = 1; run <= runs; ++run)); do
     times[$name]+="$(awk -v a="$(now)" -v b="$start" 'BEGIN {print a - b}') "
   done
 done
-median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 ip=$(echo "${times[image-parallel]}" | median)
 m4=$(echo "${times[4x4]}" | median)
 m8=$(echo "${times[8x8]}" | median)

@@ -41,7 +41,7 @@ povray_cmd=(povray "+I$pov_scene" +W512 +H512 -A +WT2 -D "+O$out_dir/povray.png"
 raycube_cmd=("$raycube" render --balls 2 --size 512x512 --mode image-parallel --threads 2
              -o "$out_dir/raycube.png" "$@")
 
-now() { date +%s.%N; }
+source "$(dirname "$0")/timing.sh"
 
 # Runs a command, stdout and stderr to $2; prints its wall time in seconds. A failure stops the script.
 timed() {
@@ -61,7 +61,6 @@ timed() {
 # POV-Ray's own "Trace Time: ... (0.178 seconds)" line: render time without start-up and parsing.
 povray_trace_time() { sed -n 's/^ *Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$1" | tail -n 1; }
 
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else printf "%.4f\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 # One untimed run of each: warms the page cache and fails fast on a bad command line.
 timed "$out_dir/povray.log" "${povray_cmd[@]}" >/dev/null

@@ -27,10 +27,10 @@ struct BasicBox {
   }
   Vec3Of<Real> center() const { return Real(0.5) * (lo + hi); }
   Vec3Of<Real> extent() const { return hi - lo; }
-  // Grown by kBoxPaddingRelative of its size and magnitude: conservative against rounding.
-  BasicBox padded() const {
+  // Grown by `relative` of its size and magnitude: conservative against rounding.
+  BasicBox padded(double relative) const {
     const Vec3Of<Real> magnitude = glm::max(glm::abs(lo), glm::abs(hi));
-    const Vec3Of<Real> pad = Real(kBoxPaddingRelative) * (extent() + magnitude);
+    const Vec3Of<Real> pad = Real(relative) * (extent() + magnitude);
     return BasicBox{lo - pad, hi + pad};
   }
   // The box in another precision, rounded outwards so that it still holds everything this one holds.

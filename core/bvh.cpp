@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/precision.h"
 #include "core/transmission.h"
 
 namespace raycube::core {
@@ -27,7 +28,7 @@ template <class Real>
 BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects)
     : scene_(scene), shading_(shading), order_(std::move(objects)) {
   std::vector<Box> boxes(scene.objects.size());
-  for (std::uint32_t o : order_) boxes[o] = boundsOf(scene.objects[o]);
+  for (std::uint32_t o : order_) boxes[o] = boundsOf(scene.objects[o], kBoxPaddingRelativeOf<Real>);
   nodes_.reserve(2 * order_.size() + 1);
   if (!order_.empty()) build(boxes, 0, std::uint32_t(order_.size()));
 }

@@ -199,7 +199,7 @@ template double nearestHit(const Object&, const BasicRay<double>&, double);
 template BasicSurfacePoint<float> surfaceAt(const Object&, const BasicRay<float>&, float);
 template BasicSurfacePoint<double> surfaceAt(const Object&, const BasicRay<double>&, double);
 
-Box boundsOf(const Object& object) {
+Box boundsOf(const Object& object, double paddingRelative) {
   Box box;
   std::visit(Overloaded{[&](const Sphere& s) {
                           box.extend(s.center - Vec3(s.radius));
@@ -220,7 +220,7 @@ Box boundsOf(const Object& object) {
                           for (const Vec3& v : p.vertices) box.extend(v);
                         }},
              object.shape);
-  return box.padded();
+  return box.padded(paddingRelative);
 }
 
 }  // namespace raycube::core

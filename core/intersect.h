@@ -29,8 +29,8 @@ template <class Real>
 BasicSurfacePoint<Real> surfaceAt(const Object& object, const BasicRay<Real>& ray,
                                   std::type_identity_t<Real> t);
 
-// Padded world-space bounding box of the object.
-Box boundsOf(const Object& object);
+// World-space bounding box of the object, padded by paddingRelative of its size and magnitude.
+Box boundsOf(const Object& object, double paddingRelative);
 
 // Closest hit of a ray among candidates: smallest t, ties broken by the smaller object index, so that
 // any traversal order, any acceleration structure and any partition of space choose the same object.

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "core/tolerances.h"
+
 namespace raycube::core {
 
 enum class Precision : std::uint8_t { Float, Double };
@@ -36,6 +38,10 @@ inline constexpr Real kSpawnOffsetRelativeOf = sizeof(Real) == sizeof(float) ? R
 // Intersection tests form products of up to three coordinates (the watertight triangle test's scaled t):
 // they stay normal and finite for coordinates within [2^-kSafeExponent, 2^kSafeExponent]. A scene outside
 // is rescaled by a power of two before tracing (see rescaledFor in core/scene.h).
+template <class Real>
+inline constexpr double kBoxPaddingRelativeOf = sizeof(Real) == sizeof(float) ? kFloatBoxPaddingRelative
+                                                                              : kBoxPaddingRelative;
+
 template <class Real>
 inline constexpr int kSafeExponentOf = sizeof(Real) == sizeof(float) ? 8 : 64;
 

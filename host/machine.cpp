@@ -45,7 +45,7 @@ std::pair<double, double> clipToWedge(double lo, double hi, double a, double b, 
 // clipped to the region's wedge, all in one eye-frame box (3.7.2 uses the region's vertices).
 node::LightSources withCorners(node::LightSources sources, const core::View& view) {
   if (sources.eyeBox.empty()) return sources;
-  sources.eyeBox = sources.eyeBox.padded();
+  sources.eyeBox = sources.eyeBox.padded(core::kCellMarginRelative);
   for (int corner = 0; corner < 8; ++corner) {
     const core::Box& e = sources.eyeBox;
     const core::Vec3 eyeFrame(corner & 1 ? e.hi.x : e.lo.x, corner & 2 ? e.hi.y : e.lo.y,

@@ -21,7 +21,8 @@ struct Setting {
   RenderSettings settings;
 };
 
-// Each knob swept from cheap to accurate, the others at the SPD defaults (depth 5, 1 ray, no cut-off).
+// Each knob swept from cheap to accurate, the others at the SPD defaults (depth 5, 1 ray, no cut-off,
+// double).
 std::vector<Setting> sweeps(const RenderSettings& base) {
   std::vector<Setting> s;
   for (int depth : {1, 2, 3, 4, 5, 8}) {
@@ -38,6 +39,11 @@ std::vector<Setting> sweeps(const RenderSettings& base) {
     RenderSettings r = base;
     r.shading.raysPerSample = spp;
     s.push_back({"spp", std::to_string(spp), r});
+  }
+  for (core::Precision p : {core::Precision::Float, core::Precision::Double}) {
+    RenderSettings r = base;
+    r.precision = p;
+    s.push_back({"precision", core::nameOf(p), r});
   }
   return s;
 }
@@ -56,10 +62,12 @@ std::vector<TradeoffRow> measureTradeoff(const core::Scene& scene, const RenderS
   converged.shading.maxDepth = options.referenceDepth;
   converged.shading.raysPerSample = options.referenceRaysPerSample;
   converged.shading.minWeight = 0;
+  converged.precision = core::Precision::Double;
   const core::Image reference = renderImageParallel(scene, converged).image;
   std::vector<TradeoffRow> rows;
   RenderSettings defaults = base;
   defaults.shading = core::ShadingOptions{};
+  defaults.precision = core::Precision::Double;
   for (const Setting& s : sweeps(defaults)) {
     TradeoffRow row;
     row.knob = s.knob;

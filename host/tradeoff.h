@@ -15,7 +15,7 @@
 namespace raycube::host {
 
 struct TradeoffRow {
-  std::string knob;     // "depth", "min-weight", "spp"
+  std::string knob;     // "depth", "min-weight", "spp", "precision"
   std::string setting;  // its value
   double seconds = 0;   // whole render, median
   core::TraceCounters counters;
@@ -49,7 +49,7 @@ std::string subsampleTable(const std::vector<SubsampleRow>& rows);
 void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path);
 // Error (RMSE, log scale) against time, one polyline per knob in the colours of kKnobColors.
 core::Image tradeoffPlot(const std::vector<TradeoffRow>& rows);
-inline const char* const kKnobs[] = {"depth", "min-weight", "spp"};
-inline const core::Color kKnobColors[] = {{0.85, 0.2, 0.1}, {0.1, 0.45, 0.85}, {0.2, 0.65, 0.2}};
+inline const char* const kKnobs[] = {"depth", "min-weight", "spp", "precision"};
+inline const core::Color kKnobColors[] = {{0.85, 0.2, 0.1}, {0.1, 0.45, 0.85}, {0.2, 0.65, 0.2}, {0.6, 0.3, 0.7}};
 
 }  // namespace raycube::host

@@ -27,7 +27,7 @@ EyeBox eyeBoxOf(const core::Object& object, const core::View& view) {
   } else if (const auto* patch = std::get_if<core::Patch>(&object.shape)) {
     for (const core::Vec3& v : patch->vertices) box.extend(eyeFramePoint(view, v));
   } else {
-    const core::Box world = core::boundsOf(object);
+    const core::Box world = core::boundsOf(object, core::kCellMarginRelative);
     for (int corner = 0; corner < 8; ++corner)
       box.extend(eyeFramePoint(
           view, core::Vec3(corner & 1 ? world.hi.x : world.lo.x, corner & 2 ? world.hi.y : world.lo.y,

@@ -125,13 +125,14 @@ std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::V
     Pyramid pyramid;
     if (!buildPyramid(light, sources, pyramid)) return candidates;
     for (std::uint32_t o : candidates)
-      if (boxMayMeetPyramid(core::boundsOf(scene.objects[o]), pyramid)) kept.push_back(o);
+      if (boxMayMeetPyramid(core::boundsOf(scene.objects[o], core::kCellMarginRelative), pyramid))
+        kept.push_back(o);
     return kept;
   }
   Cone cone;
   if (!buildCone(light, sources, cone)) return candidates;
   for (std::uint32_t o : candidates) {
-    const core::Box b = core::boundsOf(scene.objects[o]);
+    const core::Box b = core::boundsOf(scene.objects[o], core::kCellMarginRelative);
     if (sphereMayMeetCone(b.center(), 0.5 * glm::length(b.extent()), cone)) kept.push_back(o);
   }
   return kept;

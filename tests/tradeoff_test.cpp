@@ -29,7 +29,12 @@ TEST(Tradeoff, MoreAccurateSettingsComeCloserToTheReference) {
     EXPECT_TRUE(std::isfinite(r.rmse));
     byKnob[r.knob].push_back(r);
   }
-  for (const char* knob : kKnobs) EXPECT_GE(byKnob[knob].size(), 4u) << knob;
+  for (const char* knob : {"depth", "min-weight", "spp"}) EXPECT_GE(byKnob[knob].size(), 4u) << knob;
+  // Precision: float, then double; the double row is the SPD default and so the depth-5 row's picture.
+  ASSERT_EQ(byKnob["precision"].size(), 2u);
+  EXPECT_EQ(byKnob["precision"][0].setting, "float");
+  EXPECT_EQ(byKnob["precision"][1].rmse, byKnob["depth"][4].rmse);
+  EXPECT_NE(byKnob["precision"][0].rmse, byKnob["precision"][1].rmse) << "float renders another picture";
   // Deeper trees and more rays per pixel never move away from the converged image.
   for (const char* knob : {"depth", "spp"})
     for (std::size_t i = 1; i < byKnob[knob].size(); ++i)
