@@ -1,8 +1,8 @@
 #include "host/machine.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <latch>
@@ -82,6 +82,18 @@ node::LightSources rearLightSourcesOf(const std::vector<std::uint32_t>& rear,
   return withCorners(sources, view);
 }
 
+// Calls visit(p) for p in [0, processors) on all cores, with std::thread, whose join ThreadSanitizer sees
+// (oneTBB's, in Debian's uninstrumented build, it does not, and the host's later reads were reported).
+template <class Visit>
+void forEachProcessor(int processors, Visit&& visit) {
+  const int workers = std::max(1, std::min(processors, int(std::thread::hardware_concurrency())));
+  std::vector<std::jthread> threads;
+  for (int w = 0; w < workers; ++w)
+    threads.emplace_back([&, w] {
+      for (int p = w; p < processors; p += workers) visit(p);
+    });
+}
+
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
@@ -103,7 +115,7 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
           node::objectsInLightVolume(machine.lightRays, light.position, rearSources, scene, all));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
-  tbb::parallel_for(0, regions.processors(), [&](int p) {
+  forEachProcessor(regions.processors(), [&](int p) {
     const node::SampleRect a = regions.areaOf(p);
     const node::ColumnSlab region{
         lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0, core::kInfinity};
