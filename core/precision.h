@@ -3,8 +3,6 @@
 // written once over a type Real; the renderers instantiate it for float and double and dispatch here.
 #include <cstdint>
 #include <limits>
-#include <stdexcept>
-#include <string>
 #include <utility>
 
 #include "core/tolerances.h"
@@ -27,22 +25,25 @@ decltype(auto) withPrecision(Precision precision, Visit&& visit) {
 template <class Real>
 inline constexpr Precision kPrecisionOf = sizeof(Real) == sizeof(float) ? Precision::Float
                                                                         : Precision::Double;
+template <class Real>
+inline constexpr bool kIsFloat = kPrecisionOf<Real> == Precision::Float;
 
 // Spawned rays start off the surface by this many units of the hit point's magnitude (max-norm, or the
 // distance travelled when larger), in the spirit of Wachter & Binder (Ray Tracing Gems ch. 6): far above the
 // intersection error of the precision, far below any feature. Double: 2^-32, about 2^20 ulps. Float: 2^-14,
 // about 2^10 ulps (float has too few bits for 2^20 ulps to stay below a feature).
 template <class Real>
-inline constexpr Real kSpawnOffsetRelativeOf = sizeof(Real) == sizeof(float) ? Real(0x1p-14) : Real(0x1p-32);
+inline constexpr Real kSpawnOffsetRelativeOf = kIsFloat<Real> ? Real(0x1p-14) : Real(0x1p-32);
+
+// The BVH's box padding for rays of this precision (see kBoxPaddingRelative in core/tolerances.h).
+template <class Real>
+inline constexpr double kBoxPaddingRelativeOf =
+    kIsFloat<Real> ? kFloatBoxPaddingRelative : kBoxPaddingRelative;
 
 // Intersection tests form products of up to three coordinates (the watertight triangle test's scaled t):
 // they stay normal and finite for coordinates within [2^-kSafeExponent, 2^kSafeExponent]. A scene outside
 // is rescaled by a power of two before tracing (see rescaledFor in core/scene.h).
 template <class Real>
-inline constexpr double kBoxPaddingRelativeOf = sizeof(Real) == sizeof(float) ? kFloatBoxPaddingRelative
-                                                                              : kBoxPaddingRelative;
-
-template <class Real>
-inline constexpr int kSafeExponentOf = sizeof(Real) == sizeof(float) ? 8 : 64;
+inline constexpr int kSafeExponentOf = kIsFloat<Real> ? 8 : 64;
 
 }  // namespace raycube::core

@@ -53,68 +53,6 @@ MachineSettings machineFor(Grid grid, std::size_t capacity,
   return m;
 }
 
-std::string describeDifference(const core::Image& a, const core::Image& b) {
-  if (a.width != b.width || a.height != b.height)
-    return "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
-           std::to_string(b.width) + "x" + std::to_string(b.height);
-  const core::ImageDifference d = core::compareImages(a, b);
-  std::size_t differing = 0;
-  long first = -1;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      if (a.pixels[i][c] != b.pixels[i][c]) {
-        if (first < 0) first = long(i);
-        ++differing;
-        break;
-      }
-  std::string text = std::to_string(differing) + " pixels differ, maxAbs " + std::to_string(d.maxAbs) + ", " +
-                     std::to_string(d.pixelsOver) + " over one sRGB level";
-  if (first >= 0)
-    text += ", first at (" + std::to_string(first % a.width) + ", " + std::to_string(first / a.width) + ")";
-  return text;
-}
-
-// Everything a machine run must agree on with the reference (items 1-3 of the contract above).
-void expectMachineMatchesReference(const RenderResult& reference, const RenderResult& machine,
-                                   const MachineReport& report, const std::string& label) {
-  EXPECT_TRUE(core::bitIdentical(machine.image, reference.image))
-      << label
-      << ": image differs from the reference: " << describeDifference(machine.image, reference.image);
-
-  std::array<std::uint64_t, core::kRayKinds> spawned{}, finished{}, messages{};
-  std::uint64_t contributions = 0, nonFinite = 0;
-  for (const ProcessorReport& p : report.processors) {
-    for (int k = 0; k < core::kRayKinds; ++k) {
-      spawned[k] += p.node.spawned[k];
-      finished[k] += p.node.finished[k];
-      messages[k] += p.node.messagesByKind[k];
-    }
-    contributions += p.node.processed.contributions;
-    nonFinite += p.node.processed.nonFinite;
-  }
-  for (int k = 0; k < core::kRayKinds; ++k) {
-    const char* kind = core::rayKindName(core::RayKind(k));
-    EXPECT_EQ(spawned[k], finished[k]) << label << ": " << kind << " rays spawned vs finished";
-    EXPECT_EQ(finished[k], reference.counters.rays[k]) << label << ": " << kind << " rays vs the reference";
-    EXPECT_EQ(machine.counters.rays[k], reference.counters.rays[k])
-        << label << ": reported " << kind << " rays";
-  }
-  EXPECT_EQ(report.contributionsAccumulated, contributions) << label << ": contributions accumulated vs sent";
-  EXPECT_EQ(contributions, reference.counters.contributions) << label << ": contributions vs the reference";
-  EXPECT_EQ(nonFinite, 0u) << label << ": non-finite contributions";
-  EXPECT_EQ(reference.counters.nonFinite, 0u) << label << ": non-finite contributions in the reference";
-  // 3.1: an eye ray lies inside the pyramid of its own pixel area.
-  EXPECT_EQ(messages[std::size_t(core::RayKind::Eye)], 0u) << label << ": eye rays sent to a neighbour";
-  EXPECT_EQ(int(report.processors.size()), report.settings.rows * report.settings.columns) << label;
-}
-
-void renderAndCompare(const core::Scene& scene, const RenderResult& reference, const RenderSettings& settings,
-                      const MachineSettings& machine, const std::string& label) {
-  MachineReport report;
-  const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
-  expectMachineMatchesReference(reference, result, report, label);
-}
-
 // ---------------------------------------------------------------------------------------------------------
 // 1-3: bit identity, conservation, no eye-ray messages, on every shipped scene.
 
@@ -405,18 +343,20 @@ TEST(MachineTest, ObjectsStraddlingTheEyePlaneMatchReference) {
 // The eye inside a clear sphere (T = 1, Kd = 0): every eye ray starts inside an object and leaves it through
 // the back; with ior 1.5 it bends there. A mirror sphere and a floor give the refracted rays something to
 // hit.
+// Background, camera (the eye at z = 5, inside the clear sphere) and light of both eye-inside scenes.
+const std::string kEyeInsideView =
+    "b 0.1 0.1 0.3\n"
+    "v\n"
+    "from 0 0 5\n"
+    "at 0 0 0\n"
+    "up 0 1 0\n"
+    "angle 45\n"
+    "hither 0.01\n"
+    "resolution 32 32\n"
+    "l 3 8 2\n";
+
 std::string eyeInsideScene(const std::string& ior) {
-  return "b 0.1 0.1 0.3\n"
-         "v\n"
-         "from 0 0 5\n"
-         "at 0 0 0\n"
-         "up 0 1 0\n"
-         "angle 45\n"
-         "hither 0.01\n"
-         "resolution 32 32\n"
-         "l 3 8 2\n"
-         "f 1 1 1 0 0.1 30 1 " +
-         ior +
+  return kEyeInsideView + "f 1 1 1 0 0.1 30 1 " + ior +
          "\n"
          "s 0 0 5 1.2\n"
          "f 0.8 0.8 0.8 0.3 0.7 50 0 1\n"
@@ -449,22 +389,13 @@ TEST(MachineTest, EyeInsideTransparentSphereMatchesReference) {
 // (13, 26) and (18, 26) of a 32 x 32 image: the refracted ray passes near the diffuse sphere and should hit
 // the floor; one processor is enough, so it is the region's cell walk, not the messages.
 TEST(MachineTest, EyeInsideRefractingSphereOneProcessorMatchesReference) {
-  const std::string nff =
-      "b 0.1 0.1 0.3\n"
-      "v\n"
-      "from 0 0 5\n"
-      "at 0 0 0\n"
-      "up 0 1 0\n"
-      "angle 45\n"
-      "hither 0.01\n"
-      "resolution 32 32\n"
-      "l 3 8 2\n"
-      "f 1 1 1 0 0 30 1 1.5\n"
-      "s 0 0 5 1.2\n"
-      "f 0.8 0.8 0.8 0.3 0 50 0 1\n"
-      "s 0 0 0 1\n"
-      "f 0.9 0.7 0.4 0.8 0 10 0 1\n"
-      "s 0 -101.5 0 100\n";
+  const std::string nff = kEyeInsideView +
+                          "f 1 1 1 0 0 30 1 1.5\n"
+                          "s 0 0 5 1.2\n"
+                          "f 0.8 0.8 0.8 0.3 0 50 0 1\n"
+                          "s 0 0 0 1\n"
+                          "f 0.9 0.7 0.4 0.8 0 10 0 1\n"
+                          "s 0 -101.5 0 100\n";
   const core::Scene scene = core::parseNff(nff, "eye_inside_minimal.nff");
   const RenderSettings settings = settingsFor(32);
   const RenderResult reference = renderReference(scene, settings);

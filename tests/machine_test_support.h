@@ -1,5 +1,7 @@
 #pragma once
-// Shared by the machine's test programs: sanitizer-aware sizes and a render that cannot hang CI.
+// Shared by the machine's test programs: sanitizer-aware sizes, a render that cannot hang CI, and everything
+// a machine run must agree on with the reference renderer.
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -7,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "core/image.h"
 #include "host/machine.h"
 #include "test_support.h"
 
@@ -44,6 +47,72 @@ inline RenderResult renderMachineWatched(const core::Scene& scene, const RenderS
   }
   worker.join();
   return done.get();
+}
+
+// Where two images differ: for the messages of the comparisons below.
+inline std::string describeDifference(const core::Image& a, const core::Image& b) {
+  if (a.width != b.width || a.height != b.height)
+    return "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
+           std::to_string(b.width) + "x" + std::to_string(b.height);
+  const core::ImageDifference d = core::compareImages(a, b);
+  std::size_t differing = 0;
+  long first = -1;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (a.pixels[i][c] != b.pixels[i][c]) {
+        if (first < 0) first = long(i);
+        ++differing;
+        break;
+      }
+  std::string text = std::to_string(differing) + " pixels differ, maxAbs " + std::to_string(d.maxAbs) + ", " +
+                     std::to_string(d.pixelsOver) + " over one sRGB level";
+  if (first >= 0)
+    text += ", first at (" + std::to_string(first % a.width) + ", " + std::to_string(first / a.width) + ")";
+  return text;
+}
+
+// Everything a machine run must agree on with the reference: the image bit for bit, every ray spawned
+// finished once and as many of each kind as the reference traced, every contribution delivered, no NaN, and
+// no eye ray sent to a neighbour (3.1).
+inline void expectMachineMatchesReference(const RenderResult& reference, const RenderResult& machine,
+                                          const MachineReport& report, const std::string& label) {
+  EXPECT_TRUE(core::bitIdentical(machine.image, reference.image))
+      << label
+      << ": image differs from the reference: " << describeDifference(machine.image, reference.image);
+
+  std::array<std::uint64_t, core::kRayKinds> spawned{}, finished{}, messages{};
+  std::uint64_t contributions = 0, nonFinite = 0;
+  for (const ProcessorReport& p : report.processors) {
+    for (int k = 0; k < core::kRayKinds; ++k) {
+      spawned[k] += p.node.spawned[k];
+      finished[k] += p.node.finished[k];
+      messages[k] += p.node.messagesByKind[k];
+    }
+    contributions += p.node.processed.contributions;
+    nonFinite += p.node.processed.nonFinite;
+  }
+  for (int k = 0; k < core::kRayKinds; ++k) {
+    const char* kind = core::rayKindName(core::RayKind(k));
+    EXPECT_EQ(spawned[k], finished[k]) << label << ": " << kind << " rays spawned vs finished";
+    EXPECT_EQ(finished[k], reference.counters.rays[k]) << label << ": " << kind << " rays vs the reference";
+    EXPECT_EQ(machine.counters.rays[k], reference.counters.rays[k])
+        << label << ": reported " << kind << " rays";
+  }
+  EXPECT_EQ(report.contributionsAccumulated, contributions) << label << ": contributions accumulated vs sent";
+  EXPECT_EQ(contributions, reference.counters.contributions) << label << ": contributions vs the reference";
+  EXPECT_EQ(nonFinite, 0u) << label << ": non-finite contributions";
+  EXPECT_EQ(reference.counters.nonFinite, 0u) << label << ": non-finite contributions in the reference";
+  // 3.1: an eye ray lies inside the pyramid of its own pixel area.
+  EXPECT_EQ(messages[std::size_t(core::RayKind::Eye)], 0u) << label << ": eye rays sent to a neighbour";
+  EXPECT_EQ(int(report.processors.size()), report.settings.rows * report.settings.columns) << label;
+}
+
+inline void renderAndCompare(const core::Scene& scene, const RenderResult& reference,
+                             const RenderSettings& settings, const MachineSettings& machine,
+                             const std::string& label) {
+  MachineReport report;
+  const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
+  expectMachineMatchesReference(reference, result, report, label);
 }
 
 }  // namespace raycube::host::testing_support

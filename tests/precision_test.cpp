@@ -87,13 +87,8 @@ TEST(Precision, FloatMachineOnBspPartitionsMatchesTheFloatReference) {
       machine.balance = Balance::Bsp;
       machine.subsampleWindow = 4;
       machine.queueCapacity = capacity;
-      MachineReport report;
-      const std::string label =
-          "float BSP " + std::to_string(processors) + " capacity " + std::to_string(capacity);
-      const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
-      EXPECT_TRUE(core::bitIdentical(result.image, reference.image)) << label;
-      EXPECT_EQ(result.counters.totalRays(), reference.counters.totalRays()) << label;
-      EXPECT_EQ(report.contributionsAccumulated, reference.counters.contributions) << label;
+      renderAndCompare(scene, reference, settings, machine,
+                       "float BSP " + std::to_string(processors) + " capacity " + std::to_string(capacity));
     }
   }
 }

@@ -136,22 +136,6 @@ std::size_t nonFinitePixels(const core::Image& image) {
   return count;
 }
 
-std::string where(const core::Image& a, const core::Image& b) {
-  if (a.width != b.width || a.height != b.height) return "sizes differ";
-  std::size_t differing = 0;
-  long first = -1;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i)
-    if (a.pixels[i] != b.pixels[i]) {
-      if (first < 0) first = long(i);
-      ++differing;
-    }
-  std::string text = std::to_string(differing) + " pixels differ, maxAbs " +
-                     std::to_string(core::compareImages(a, b).maxAbs);
-  if (first >= 0)
-    text += ", first at (" + std::to_string(first % a.width) + ", " + std::to_string(first / a.width) + ")";
-  return text;
-}
-
 RenderResult reference(const core::Scene& scene, const RenderSettings& settings, const std::string& label) {
   RenderResult result = renderReference(scene, settings);
   EXPECT_EQ(nonFinitePixels(result.image), 0u) << label << ": reference has NaN/Inf pixels";
@@ -167,26 +151,7 @@ void expectMachineMatches(const core::Scene& scene, const RenderSettings& settin
   MachineReport report;
   const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
   EXPECT_EQ(nonFinitePixels(result.image), 0u) << label << ": machine has NaN/Inf pixels";
-  EXPECT_TRUE(core::bitIdentical(result.image, expected.image))
-      << label << ": machine image differs from the reference: " << where(result.image, expected.image);
-  std::array<std::uint64_t, core::kRayKinds> spawned{}, finished{};
-  std::uint64_t contributions = 0, nonFinite = 0;
-  for (const ProcessorReport& p : report.processors) {
-    for (int k = 0; k < core::kRayKinds; ++k) {
-      spawned[k] += p.node.spawned[k];
-      finished[k] += p.node.finished[k];
-    }
-    contributions += p.node.processed.contributions;
-    nonFinite += p.node.processed.nonFinite;
-  }
-  for (int k = 0; k < core::kRayKinds; ++k) {
-    const char* kind = core::rayKindName(core::RayKind(k));
-    EXPECT_EQ(spawned[k], finished[k]) << label << ": " << kind << " rays spawned vs finished";
-    EXPECT_EQ(finished[k], expected.counters.rays[k]) << label << ": " << kind << " rays vs the reference";
-  }
-  EXPECT_EQ(report.contributionsAccumulated, contributions) << label << ": contributions accumulated vs sent";
-  EXPECT_EQ(contributions, expected.counters.contributions) << label << ": contributions vs the reference";
-  EXPECT_EQ(nonFinite, 0u) << label << ": machine made NaN/Inf contributions";
+  expectMachineMatchesReference(expected, result, report, label);
 }
 
 void expectMachineMatchesInEveryLightMode(const core::Scene& scene, const RenderSettings& settings, int rows,
@@ -229,7 +194,7 @@ TEST(StabilityScale, Balls2FromMicroToMegaRendersTheUnitScaleImageOnBothRenderer
       EXPECT_LE(core::compareImages(unit.image, machine.image).maxAbs, core::kOneSrgbLevel)
           << modeLabel << ": machine vs unit scale";
       EXPECT_TRUE(core::bitIdentical(machine.image, ref.image))
-          << modeLabel << ": machine vs reference: " << where(machine.image, ref.image);
+          << modeLabel << ": machine vs reference: " << describeDifference(machine.image, ref.image);
     }
     // Conservation and contributions, once per scale.
     expectMachineMatches(scene, settings, machineFor(4, 4), ref, label + " 4x4 conservation");
@@ -651,7 +616,7 @@ TEST_P(StabilityDegenerate, CoincidentSpheresShowTheFirstOnly) {
   const core::Scene both = scene(true);
   const RenderResult ref = reference(both, settings, "coincident");
   const RenderResult single = reference(scene(false), settings, "single");
-  EXPECT_TRUE(core::bitIdentical(ref.image, single.image)) << where(ref.image, single.image);
+  EXPECT_TRUE(core::bitIdentical(ref.image, single.image)) << describeDifference(ref.image, single.image);
   expectMachineMatches(both, settings, machineFor(2, 2), ref, "coincident 2x2 messages");
   expectMachineMatches(both, settings, machineFor(3, 5, node::LightRayMode::Pyramid), ref,
                        "coincident 3x5 pyramid");
@@ -675,7 +640,7 @@ TEST_P(StabilityDegenerate, LightInsideAnOpaqueSphereLightsNothingOutside) {
   const core::Scene lit = lampInABox(true, Color(1));
   const RenderResult enclosed = reference(lit, settings, "lamp enclosed");
   const RenderResult off = reference(lampInABox(true, Color(0)), settings, "lamp off");
-  EXPECT_TRUE(core::bitIdentical(enclosed.image, off.image)) << where(enclosed.image, off.image);
+  EXPECT_TRUE(core::bitIdentical(enclosed.image, off.image)) << describeDifference(enclosed.image, off.image);
   // Teeth: without its sphere the lamp does light the scene.
   const RenderResult open = reference(lampInABox(false, Color(1)), settings, "lamp open");
   const RenderResult openOff = reference(lampInABox(false, Color(0)), settings, "lamp open, off");
