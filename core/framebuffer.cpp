@@ -21,17 +21,10 @@ std::int64_t toFixed(double value) {
 Framebuffer::Framebuffer(int samplesX, int samplesY)
     : samplesX_(samplesX), samplesY_(samplesY), fixed_(std::size_t(samplesX) * samplesY * 3, 0) {}
 
-bool Framebuffer::add(const Contribution& c) {
+void Framebuffer::add(const Contribution& c) {
   std::int64_t* slot = &fixed_[std::size_t(c.sample) * 3];
-  bool finite = true;
-  for (int ch = 0; ch < 3; ++ch) {
-    if (!std::isfinite(c.value[ch])) {
-      finite = false;
-      continue;
-    }
-    slot[ch] += toFixed(c.value[ch]);
-  }
-  return finite;
+  for (int ch = 0; ch < 3; ++ch)
+    if (std::isfinite(c.value[ch])) slot[ch] += toFixed(c.value[ch]);
 }
 
 void Framebuffer::add(const Framebuffer& other) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/contribution_sink.h"
 #include "core/ray.h"
 #include "core/view.h"
 
@@ -12,7 +13,7 @@ namespace raycube::core {
 
 struct Image;
 
-class Framebuffer {
+class Framebuffer final : public ContributionSink {
  public:
   // 2^-40 resolution (~1e-12) and headroom up to 2^23 per channel and sample.
   static constexpr double kFixedScale = 0x1p40;
@@ -20,8 +21,8 @@ class Framebuffer {
   Framebuffer(int samplesX, int samplesY);
 
   // Not synchronised: one writer per sample at a time (the host thread, or the task owning the sample).
-  // Returns false when the contribution had a NaN or infinite channel (that channel is dropped).
-  bool add(const Contribution& c);
+  // A NaN or infinite channel is dropped (tracing counts such contributions as nonFinite).
+  void add(const Contribution& c) override;
   void add(const Framebuffer& other);  // sum of two partial buffers of the same size
 
   // Pixel colours: the sample itself (centres) or the mean of a pixel's four corner samples (SPD rule 6).

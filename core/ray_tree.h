@@ -2,10 +2,12 @@
 // Tracing one sample's whole ray tree on one thread, against any database query (BruteForce, Bvh): the
 // sequential form of what the machine does with messages. Rays are taken from a stack; the order does not
 // matter because contributions are summed in fixed point.
+#include <cmath>
 #include <vector>
 
-#include "core/framebuffer.h"
+#include "core/contribution_sink.h"
 #include "core/trace_stats.h"
+#include "core/view.h"
 #include "core/whitted.h"
 
 namespace raycube::core {
@@ -46,7 +48,7 @@ struct IgnoreRays {
 
 template <class Database, class Real, class Observer = IgnoreRays>
 void traceRayTree(const Whitted& shading, const Database& database, const BasicTracedRay<Real>& eye,
-                  Framebuffer& frame, TraceCounters& counters, BasicRayTreeScratch<Real>& scratch,
+                  ContributionSink& sink, TraceCounters& counters, BasicRayTreeScratch<Real>& scratch,
                   Observer&& observe = {}) {
   scratch.pending.clear();
   scratch.pending.push_back(eye);
@@ -71,7 +73,8 @@ void traceRayTree(const Whitted& shading, const Database& database, const BasicT
     observe(ray, tEnd, counters.intersectionTests + counters.boxTests - workBefore);
     for (const Contribution& c : scratch.outcome.contributions) {
       ++counters.contributions;
-      if (!frame.add(c)) ++counters.nonFinite;
+      if (!std::isfinite(c.value.x + c.value.y + c.value.z)) ++counters.nonFinite;
+      sink.add(c);
     }
     for (const BasicTracedRay<Real>& r : scratch.outcome.spawned) scratch.pending.push_back(r);
   }

@@ -62,7 +62,7 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
   LoadSample sample;
   sample.raysPerSegment = double(window) * window;
   const core::Bvh database(scene, shading);
-  core::Framebuffer scratchFrame(view.samplesX(), view.samplesY());
+  core::DiscardContributions colours;
   core::TraceCounters counters;
   core::RayTreeScratch scratch;
   const double zNear = std::max(view.hither(), 1e-9 * (1 + glm::length(view.eye())));
@@ -79,7 +79,7 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
     for (int wx = 0; wx * window < view.samplesX(); ++wx) {
       const int sx = std::min(view.samplesX() - 1, wx * window + window / 2);
       const int sy = std::min(view.samplesY() - 1, wy * window + window / 2);
-      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), scratchFrame, counters, scratch,
+      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), colours, counters, scratch,
                          record);
     }
   if (metric == LoadMetric::Cost && !sample.segments.empty()) {

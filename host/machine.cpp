@@ -5,24 +5,20 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <latch>
 #include <stdexcept>
 #include <thread>
 
 #include "core/framebuffer.h"
 #include "host/bsp_partition.h"
 #include "host/hypercube_mapping.h"
-#include "host/jitter_transport.h"
+#include "host/machine_engine.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
-#include "host/shared_memory_transport.h"
-#include "queues/wait.h"
 
 namespace raycube::host {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr auto kHostBatchingPause = std::chrono::microseconds(500);
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -157,12 +153,8 @@ void mapOntoHypercube(const node::RegionMap& regions, const MachineSettings& mac
   out.hypercubeDimension = d.dimension;
 }
 
-template <class Real>
-RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& settings,
-                             const MachineSettings& machine, MachineReport* report) {
-  const auto start = Clock::now();
-  const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
-                        settings.shading.raysPerSample);
+// Phase 1: every processor needs at least one sample, and the machine's sizes must make sense.
+void validate(const core::View& view, const MachineSettings& machine) {
   const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
   const bool bspFits =
       (long long)machine.rows * machine.columns <= (long long)view.samplesX() * view.samplesY();
@@ -173,110 +165,108 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
                     machine.rows, machine.columns, view.samplesX(), view.samplesY()));
   if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
   if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
-  const core::Whitted shading(scene, settings.shading);
+}
+
+// Phase 2 (3.1, 3.7.1): a uniform grid, or a BSP of the sub-sampled load into areas of equal estimate.
+node::RegionMap partition(const core::View& view, const LoadSample& load, const MachineSettings& machine) {
   const node::ScreenLines lines(view);
-  // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
-  const LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
-                                        machine.lightRays != node::LightRayMode::Messages);
-  const node::RegionMap regions =
-      machine.balance == Balance::Bsp
-          ? node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns,
-                                         load, machine.loadMetric),
-                            lines)
-          : node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns),
-                                  evenCuts(view.samplesY(), machine.rows), lines);
-  std::vector<node::SampleRect> areas;
-  for (int p = 0; p < regions.processors(); ++p) areas.push_back(regions.areaOf(p));
-  std::vector<node::EyeBox> boxes;
-  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
-  const node::MachineContext context{scene, view, shading, lines, regions, boxes};
-  SharedMemoryMachine<Real> interconnect(regions, machine.queueCapacity);
-  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, regions, lines, boxes, machine);
-  std::vector<std::unique_ptr<JitterTransport<Real>>> jitters;
-  std::vector<node::BasicTransport<Real>*> transports;
-  for (int id = 0; id < regions.processors(); ++id) {
-    transports.push_back(&interconnect.endpoint(id));
-    if (machine.jitterSeed > 0) {
-      jitters.push_back(std::make_unique<JitterTransport<Real>>(*transports.back(),
-                                                                machine.jitterSeed * 7919u + unsigned(id)));
-      transports.back() = jitters.back().get();
-    }
-  }
-  // 3.2 steps 2-3: every processor subdivides its own region into cells, in its own thread; when all have
-  // done so the host lets the synthesis phase begin.
-  std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> processors(setups.size());
-  std::latch subdivided(std::ptrdiff_t(setups.size()));
-  std::latch synthesis(1);
-  std::vector<std::thread> threads;
-  for (std::size_t id = 0; id < setups.size(); ++id) {
-    threads.emplace_back([&, id] {
-      processors[id] =
-          std::make_unique<node::LogicalProcessor<Real>>(context, std::move(setups[id]), *transports[id]);
-      subdivided.count_down();
-      synthesis.wait();
-      processors[id]->run();
-    });
-  }
-  subdivided.wait();
-  RenderResult result;
-  result.mode = "machine";
-  result.precision = core::kPrecisionOf<Real>;
-  result.workers = regions.processors();
-  result.preprocessSeconds = secondsSince(start);
+  if (machine.balance == Balance::Bsp)
+    return node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
+                                        machine.loadMetric),
+                           lines);
+  return node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns), evenCuts(view.samplesY(), machine.rows),
+                               lines);
+}
 
-  const auto traceStart = Clock::now();
-  core::Framebuffer frame(view.samplesX(), view.samplesY());
-  std::uint64_t accumulated = 0;
-  {
-    Progress progress("machine", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
-    synthesis.count_down();
-    // The host thread (3.5.1): accumulate contributions until the ring has proved termination.
-    ContributionChannel& channel = interconnect.hostChannel();
-    auto accumulate = [&](const core::Contribution& c) {
-      frame.add(c);
-      ++accumulated;
-    };
-    long long reported = 0;
-    while (!interconnect.terminated()) {
-      channel.drain(accumulate);
-      long long shot = 0;
-      for (const auto& p : processors) shot += p->primariesShot();
-      progress.advance(std::uint64_t(shot - reported));
-      reported = shot;
-      // Let blocks pile up a little: one wake-up per batch of blocks, not per block (the host thread shares
-      // the two cores with every processor).
-      std::this_thread::sleep_for(kHostBatchingPause);
-      queues::waitUntil(channel.doorbell(),
-                        [&] { return interconnect.terminated() || channel.anyPending(); });
-    }
-    for (std::thread& t : threads) t.join();
-    channel.drain(accumulate);
+// The host's frame buffer (3.5.1), counting what it accumulates.
+class Accumulator final : public core::ContributionSink {
+ public:
+  explicit Accumulator(const core::View& view) : frame_(view.samplesX(), view.samplesY()) {}
+  void add(const core::Contribution& c) override {
+    frame_.add(c);
+    ++count_;
   }
-  result.image = frame.resolve(view);
-  result.traceSeconds = secondsSince(traceStart);
+  const core::Framebuffer& frame() const { return frame_; }
+  std::uint64_t count() const { return count_; }
 
-  MachineReport local;
-  MachineReport& out = report ? *report : local;
+ private:
+  core::Framebuffer frame_;
+  std::uint64_t count_ = 0;
+};
+
+// Phase 6: what the run measured, per processor and in total.
+void reportRun(std::vector<ProcessorReport> processors, const std::vector<double>& estimatedLoad,
+               const LoadSample& load, std::size_t messageBytes, const node::RegionMap& regions,
+               const MachineSettings& machine, RenderResult& result, MachineReport& out) {
   out.settings = machine;
-  out.messageBytes = sizeof(node::BasicRayMessage<Real>);
-  out.estimatedLoad = estimateLoads(areas, load, machine.loadMetric);
+  out.messageBytes = messageBytes;
+  out.estimatedLoad = estimatedLoad;
   out.subsampledRays = load.raysTraced;
   mapOntoHypercube(regions, machine, out);
-  out.contributionsAccumulated = accumulated;
-  for (int p = 0; p < regions.processors(); ++p) {
-    ProcessorReport pr;
-    pr.node = processors[p]->stats();
-    for (int f = 0; f < node::kFaces; ++f) pr.outgoing[f] = interconnect.outgoingStats(p, node::Face(f));
+  for (const ProcessorReport& pr : processors) {
     result.counters += pr.node.processed;
     out.tokenPasses += pr.node.tokenVisits;
-    out.processors.push_back(pr);
   }
-  out.probes = processors[0]->stats().probes;
+  out.tokenRounds = processors.front().node.tokenRounds;
+  out.processors = std::move(processors);
   // Rays by kind: each ray counted once, where it finished (segments are in the per-processor reports).
   for (int k = 0; k < core::kRayKinds; ++k) {
     result.counters.rays[k] = 0;
     for (const auto& pr : out.processors) result.counters.rays[k] += pr.node.finished[k];
   }
+}
+
+template <class Real>
+RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& settings,
+                             const MachineSettings& machine, MachineReport* report) {
+  const auto start = Clock::now();
+  const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
+                        settings.shading.raysPerSample);
+  validate(view, machine);
+  const core::Whitted shading(scene, settings.shading);
+  // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
+  const LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
+                                        machine.lightRays != node::LightRayMode::Messages);
+  std::vector<node::EyeBox> boxes;
+  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
+  // The scene is the caller's and outlives the render: the context shares it without owning it.
+  const node::MachineContext context{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene), view,
+                                     settings.shading, partition(view, load, machine), std::move(boxes)};
+  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(),
+                                                      context.eyeBoxes, machine);
+  RenderResult result;
+  result.mode = "machine";
+  result.precision = core::kPrecisionOf<Real>;
+  result.workers = context.regions.processors();
+
+  Accumulator host(view);
+  std::vector<ProcessorReport> processors;
+  auto traceStart = Clock::now();
+  {
+    Progress progress("machine", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
+    long long reported = 0;
+    EngineHooks hooks;
+    hooks.host = &host;
+    hooks.synthesisStarts = [&] {
+      result.preprocessSeconds = secondsSince(start);
+      traceStart = Clock::now();
+    };
+    hooks.progress = [&](long long shot) {
+      progress.advance(std::uint64_t(shot - reported));
+      reported = shot;
+    };
+    processors = makeEngine<Real>(machine)->run(context, std::move(setups), hooks);
+  }
+  result.image = host.frame().resolve(view);
+  result.traceSeconds = secondsSince(traceStart);
+
+  MachineReport local;
+  MachineReport& out = report ? *report : local;
+  std::vector<node::SampleRect> areas;
+  for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
+  out.contributionsAccumulated = host.count();
+  reportRun(std::move(processors), estimateLoads(areas, load, machine.loadMetric), load,
+            sizeof(node::BasicRayMessage<Real>), context.regions, machine, result, out);
   return result;
 }
 

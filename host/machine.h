@@ -34,6 +34,9 @@ struct MachineSettings {
 struct ProcessorReport {
   node::NodeStats node;
   std::array<queues::QueueStats, node::kFaces> outgoing;  // FIFOs it sends into
+  // Kept by the engine's driver, in its clock (wall seconds for threads):
+  double blockedSeconds = 0;  // waiting while holding rays its full neighbours would not take (3.6)
+  double idleSeconds = 0;     // waiting with nothing to do
 };
 
 struct MachineReport {
@@ -51,7 +54,7 @@ struct MachineReport {
   std::vector<ProcessorReport> processors;
   std::size_t messageBytes = 0;  // sizeof the ray message in the render's precision
   std::uint64_t contributionsAccumulated = 0;
-  std::uint32_t probes = 0;       // token rounds
+  std::uint32_t tokenRounds = 0;  // started by processor 0
   std::uint64_t tokenPasses = 0;  // token visits over all processors
 };
 

@@ -74,7 +74,7 @@ std::string machineTable(const MachineReport& report) {
   text += fmt::format(
       "  termination: {} token rounds, {} token passes; hypercube of dimension {}: {} adjacencies, "
       "dilation mean {:.2f} max {}\n",
-      report.probes, report.tokenPasses, report.hypercubeDimension, report.adjacencyEdges,
+      report.tokenRounds, report.tokenPasses, report.hypercubeDimension, report.adjacencyEdges,
       report.dilationMean, report.dilationMax);
   text += fmt::format(
       "  load ({}, {} metric, sub-sampling {}x{}): rays processed max/mean {:.2f} min/mean {:.2f}; cost "
@@ -139,8 +139,8 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"forwarded", n.forwarded},
                           {"refusedPushes", n.refusedPushes},
                           {"overflowHighWater", n.overflowHighWater},
-                          {"idleSeconds", n.idleSeconds},
-                          {"blockedSeconds", n.blockedSeconds},
+                          {"idleSeconds", p.idleSeconds},
+                          {"blockedSeconds", p.blockedSeconds},
                           {"tokenVisits", n.tokenVisits}});
   }
   const LoadBalance balance = loadBalanceOf(report);
@@ -170,7 +170,7 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"cellLevel", report.settings.cellLevel},
           {"messageBytes", report.messageBytes},
           {"contributionsAccumulated", report.contributionsAccumulated},
-          {"tokenRounds", report.probes},
+          {"tokenRounds", report.tokenRounds},
           {"tokenPasses", report.tokenPasses},
           {"processors", processors}};
 }

@@ -10,6 +10,7 @@
 
 #include "core/brute_force.h"
 #include "core/bvh.h"
+#include "core/framebuffer.h"
 #include "core/ray_tree.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"

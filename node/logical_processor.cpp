@@ -1,69 +1,66 @@
 #include "node/logical_processor.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include "core/ray_tree.h"
 #include "core/transmission.h"
+#include "node/scheduling.h"
 
 namespace raycube::node {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-constexpr std::size_t kInboxBatch = 32;
-constexpr std::size_t kBacklogLimit = 64;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 template <class Real>
 LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetup setup,
                                          BasicTransport<Real>& transport)
     : context_(context),
+      scene_(*context.scene),
+      shading_(scene_, context.shading),
       setup_(std::move(setup)),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
-      cells_(area_, context.lines, setup_.cellLevel, setup_.objects, context.eyeBoxes),
+      cells_(area_, context.lines(), setup_.cellLevel, setup_.objects, context.eyeBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
-      inbox_(kInboxBatch),
-      mailboxStamp_(context.scene.objects.size(), 0),
-      mailboxT_(context.scene.objects.size(), 0.0) {
+      inbox_(scheduling::kInboxBatch),
+      mailboxStamp_(scene_.objects.size(), 0),
+      mailboxT_(scene_.objects.size(), 0.0),
+      termination_(setup_.id) {
   stats_.id = setup_.id;
   stats_.area = area_;
   stats_.objects = cells_.objectCount();
   stats_.rearObjects = setup_.rearObjects.size();
   stats_.cells = cells_.cellCount();
   if (setup_.lightRays != LightRayMode::Messages) {
-    std::vector<char> inCells(context.scene.objects.size(), 0);
+    std::vector<char> inCells(scene_.objects.size(), 0);
     for (std::uint32_t o : setup_.objects) inCells[o] = 1;
     for (const auto& objects : setup_.lightObjects) {
-      lightVolumes_.emplace_back(context.scene, context.shading, objects);
+      lightVolumes_.emplace_back(scene_, shading_, objects);
       stats_.lightObjects += objects.size();
       for (std::uint32_t o : objects) stats_.extraLightObjects += inCells[o] ? 0 : 1;
     }
     for (const auto& objects : setup_.rearLightObjects)
-      rearLightVolumes_.emplace_back(context.scene, context.shading, objects);
+      rearLightVolumes_.emplace_back(scene_, shading_, objects);
   }
-  holdingToken_ = setup_.id == 0;  // 3.6: at the start processor 0 holds the token
 }
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
 template <class Real>
-void LogicalProcessor<Real>::run() {
-  while (!transport_.terminated()) {
-    bool progressed = flushOverflow();
-    const std::size_t n = transport_.receive(inbox_);
-    for (std::size_t k = 0; k < n; ++k) onReceived(inbox_[k]);
-    progressed |= n > 0;
-    // Back-pressure, as on the iPSC where a full FIFO locked the synthesis task: no new primary rays while
-    // rays wait for room in a neighbour's FIFO. Received rays are still consumed, so nothing deadlocks.
-    if (n == 0 && backlog() < kBacklogLimit) progressed |= shootNextPrimary();
-    if (!progressed) onIdle();
-  }
+Step LogicalProcessor<Real>::step() {
+  if (transport_.terminated()) return Step::Terminated;
+  bool progressed = flushOverflow();
+  const std::size_t n = transport_.receive(inbox_);
+  for (std::size_t k = 0; k < n; ++k) onReceived(inbox_[k]);
+  progressed |= n > 0;
+  // Back-pressure (see scheduling::kBacklogLimit): no new primary rays while rays wait for room.
+  if (n == 0 && backlog() < scheduling::kBacklogLimit) progressed |= shootNextPrimary();
+  return progressed ? Step::Worked : idleStep();
+}
+
+template <class Real>
+NodeStats LogicalProcessor<Real>::stats() const {
+  NodeStats s = stats_;
+  s.tokenVisits = termination_.visits();
+  s.tokenRounds = termination_.roundsStarted();
+  return s;
 }
 
 template <class Real>
@@ -102,7 +99,7 @@ template <class Real>
 template <class Cells>
 bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, double tb, const Cells& objects,
                                            core::Hit& hit, double& attenuation) {
-  const core::Scene& scene = context_.scene;
+  const core::Scene& scene = scene_;
   const double tLimit = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
   auto nearest = [&](std::uint32_t object) {
     if (mailboxStamp_[object] != rayStamp_) {
@@ -117,13 +114,13 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
     for (std::uint32_t object : objects) {
       const double t = nearest(object);
       if (t < ta || t >= tb) continue;
-      if (!context_.shading.transmissive(object)) {
+      if (!shading_.transmissive(object)) {
         attenuation = 0;
         return false;
       }
       crossed_.push_back(core::Hit{t, object});
     }
-    if (!crossed_.empty()) attenuation = core::attenuate(attenuation, crossed_, context_.shading);
+    if (!crossed_.empty()) attenuation = core::attenuate(attenuation, crossed_, shading_);
     return attenuation > 0;
   }
   for (std::uint32_t object : objects) {
@@ -153,20 +150,22 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
     return visitInterval(ray, ta, tb, objects, hit, attenuation);
   };
+  // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
+  auto lastPart = [&](double tEnd) { return tEnd >= tMax || er.partEnd(t) == core::kInfinity; };
+  auto leaveFor = [&](int owner, double tExit) {
+    m.tEnter = tExit;
+    m.attenuation = attenuation;
+    m.destination = std::uint16_t(owner);
+    send(m);
+  };
   for (;;) {
     const double tEnd = std::min(er.partEnd(t), tMax);
     if (!er.inFront(t)) {
       // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
-      if (t < tEnd && !visit(t, tEnd, setup_.rearObjects)) return finishRay(ray, hit, attenuation);
-      if (tEnd >= tMax || er.partEnd(t) == core::kInfinity) return finishRay(ray, hit, attenuation);
+      if ((t < tEnd && !visit(t, tEnd, setup_.rearObjects)) || lastPart(tEnd))
+        return finishRay(ray, hit, attenuation);
       t = tEnd;
-      const int owner = context_.regions.ownerAt(er, t);
-      if (owner != setup_.id) {
-        m.tEnter = t;
-        m.attenuation = attenuation;
-        m.destination = std::uint16_t(owner);
-        return send(m);
-      }
+      if (const int owner = context_.regions.ownerAt(er, t); owner != setup_.id) return leaveFor(owner, t);
       continue;
     }
     int column, row;
@@ -178,17 +177,10 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     }
     RegionExit exit;
     const WalkResult result = cells_.walk(er, t, tEnd, column, row, visit, exit, stats_.processed.boxTests);
-    if (result == WalkResult::Stopped) return finishRay(ray, hit, attenuation);
-    if (result == WalkResult::Finished) {
-      if (tEnd >= tMax || er.partEnd(t) == core::kInfinity) return finishRay(ray, hit, attenuation);
-      t = tEnd;  // on to the rear part
-      continue;
-    }
-    m.tEnter = exit.t;
-    m.attenuation = attenuation;
-    m.destination =
-        std::uint16_t(context_.regions.ownerBeyond(setup_.id, er, exit.t, exit.sStep, exit.qStep));
-    return send(m);
+    if (result == WalkResult::Exited)
+      return leaveFor(context_.regions.ownerBeyond(setup_.id, er, exit.t, exit.sStep, exit.qStep), exit.t);
+    if (result == WalkResult::Stopped || lastPart(tEnd)) return finishRay(ray, hit, attenuation);
+    t = tEnd;  // on to the rear part
   }
 }
 
@@ -209,7 +201,7 @@ bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& trans
                                            : nullptr;
   if (volume == nullptr) return false;
   ++stats_.lightRaysTracedLocally;
-  transmission = core::shadowTransmission(context_.shading, *volume, m.ray, stats_.processed, shadowScratch_);
+  transmission = core::shadowTransmission(shading_, *volume, m.ray, stats_.processed, shadowScratch_);
   return true;
 }
 
@@ -218,11 +210,11 @@ void LogicalProcessor<Real>::finishRay(const TracedRay& ray, const core::Hit& hi
   ++stats_.finished[std::size_t(ray.kind)];
   outcome_.clear();
   if (ray.kind == core::RayKind::Shadow)
-    context_.shading.finishShadow(ray, attenuation, outcome_);
+    shading_.finishShadow(ray, attenuation, outcome_);
   else if (hit.found())
-    context_.shading.shadeHit(ray, hit, outcome_);
+    shading_.shadeHit(ray, hit, outcome_);
   else
-    context_.shading.shadeMiss(ray, outcome_);
+    shading_.shadeMiss(ray, outcome_);
   deliver(outcome_);
 }
 
@@ -275,7 +267,7 @@ std::size_t LogicalProcessor<Real>::slotOf(int neighbour) const {
 
 template <class Real>
 void LogicalProcessor<Real>::countSent(int neighbour, const Message& m) {
-  ++messageBalance_;  // EWD 998: counted when the ray enters the neighbour's FIFO
+  termination_.countSent();
   ++stats_.sent[std::size_t(context_.regions.faceToward(setup_.id, neighbour))];
   ++stats_.messagesByKind[std::size_t(m.ray.kind)];
 }
@@ -297,14 +289,11 @@ bool LogicalProcessor<Real>::flushOverflow() {
 
 template <class Real>
 void LogicalProcessor<Real>::onReceived(const Message& m) {
-  --messageBalance_;
-  black_ = true;  // EWD 998: a receipt may have re-activated this node behind the token's back
+  termination_.countReceived();
   ++stats_.received[m.face];
   if (m.destination != setup_.id) {
     ++stats_.forwarded;
-    Message onward = m;
-    ++onward.hops;
-    send(onward);
+    send(m);
     return;
   }
   evaluate(m, false);
@@ -326,43 +315,26 @@ bool LogicalProcessor<Real>::passive() const {
   return true;
 }
 
-// Termination (3.6), made safe for messages in flight with Safra's counting variant (EWD 998): the token
-// sums every node's (sent - received); a white token returning to processor 0 with a zero sum, processor 0
-// white and passive, proves that every node is passive and no ray is in a FIFO. The paper's second phase
-// is kept: a node touches the token only once its primary rays are done and it has nothing to do.
+// Termination (3.6) with Safra's counting token (see SafraTermination). The paper's second phase is kept: a
+// node touches the token only once its primary rays are done and it has nothing to do.
 template <class Real>
-void LogicalProcessor<Real>::onIdle() {
+Step LogicalProcessor<Real>::idleStep() {
   transport_.flushContributions();
-  if (!holdingToken_ && transport_.receiveToken(token_)) {
-    holdingToken_ = true;
-    ++stats_.tokenVisits;
-  }
-  if (holdingToken_ && passive()) {
-    if (setup_.id == 0) {
-      const bool returned = stats_.probes > 0;
-      if (returned && !token_.black && !black_ && token_.count + messageBalance_ == 0) {
-        transport_.announceTermination();
-        return;
-      }
-      token_ = Token{false, 0, ++stats_.probes};
-    } else {
-      token_.count += messageBalance_;
-      token_.black = token_.black || black_;
-    }
-    black_ = false;
-    holdingToken_ = false;
-    transport_.passToken(token_);
-    return;
-  }
-  const auto start = Clock::now();
-  const bool blocked = backlog() > 0;
-  transport_.waitUntil([&] {
-    if (transport_.terminated() || transport_.anyIncoming()) return true;
-    for (std::size_t slot = 0; slot < overflow_.size(); ++slot)
-      if (!overflow_[slot].empty() && transport_.canSend(neighbours_[slot])) return true;
-    return !holdingToken_ && transport_.hasToken();
-  });
-  (blocked ? stats_.blockedSeconds : stats_.idleSeconds) += secondsSince(start);
+  if (Token token; !termination_.holdsToken() && transport_.receiveToken(token)) termination_.takeToken(token);
+  if (!termination_.holdsToken() || !passive()) return Step::Waiting;
+  if (termination_.release() == SafraTermination::Decision::AnnounceTermination)
+    transport_.announceTermination();
+  else
+    transport_.passToken(termination_.token());
+  return Step::Worked;
+}
+
+template <class Real>
+bool LogicalProcessor<Real>::readyToStep() const {
+  if (transport_.terminated() || transport_.anyIncoming()) return true;
+  for (std::size_t slot = 0; slot < overflow_.size(); ++slot)
+    if (!overflow_[slot].empty() && transport_.canSend(neighbours_[slot])) return true;
+  return !termination_.holdsToken() && transport_.hasToken();
 }
 
 template class LogicalProcessor<float>;

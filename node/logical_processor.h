@@ -5,6 +5,7 @@
 // the termination token.
 #include <array>
 #include <atomic>
+#include <memory>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +19,8 @@
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
 #include "node/region_map.h"
+#include "node/machine_context.h"
+#include "node/safra_termination.h"
 #include "node/transport.h"
 
 namespace raycube::node {
@@ -38,16 +41,6 @@ struct NodeSetup {
   std::vector<std::vector<std::uint32_t>> rearLightObjects;  // per light
 };
 
-// The read-only world every processor shares.
-struct MachineContext {
-  const core::Scene& scene;
-  const core::View& view;
-  const core::Whitted& shading;
-  const ScreenLines& lines;
-  const RegionMap& regions;
-  const std::vector<EyeBox>& eyeBoxes;  // per object
-};
-
 struct NodeStats {
   int id = 0;
   SampleRect area;
@@ -63,13 +56,17 @@ struct NodeStats {
   std::uint64_t forwarded = 0;      // messages passed on towards a non-adjacent destination (hops)
   std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
   std::uint64_t overflowHighWater = 0;
-  double blockedSeconds = 0;  // idle while holding rays its full neighbours would not take
-  double idleSeconds = 0;     // asleep with nothing to do
   std::uint64_t tokenVisits = 0;
-  std::uint32_t probes = 0;  // node 0: token rounds started
+  std::uint32_t tokenRounds = 0;  // node 0: token rounds started
 };
 
+// What one step did: some work (rays, the token), nothing because the node waits for the interconnect, or
+// nothing because the machine has terminated.
+enum class Step : std::uint8_t { Worked, Waiting, Terminated };
+
 // Real: the precision of the rays it traces and sends (--precision); its walk through cells is in double.
+// The node is stepped by a driver (a thread, a SimGrid actor, an MPI rank) that owns waiting and the clock:
+// step() until it returns Waiting, then wait until readyToStep() (or blocked() says why it waits).
 template <class Real>
 class LogicalProcessor {
  public:
@@ -77,8 +74,13 @@ class LogicalProcessor {
   using TracedRay = core::BasicTracedRay<Real>;
   LogicalProcessor(const MachineContext& context, NodeSetup setup, BasicTransport<Real>& transport);
 
-  void run();  // until the machine terminates
-  const NodeStats& stats() const { return stats_; }
+  Step step();
+  // Something arrived that the next step would act on: a ray, room in a FIFO it has rays for, the token,
+  // or termination. Reads only the transport's state: a driver may call it from a wait predicate.
+  bool readyToStep() const;
+  // Waiting on full neighbour FIFOs (3.6's locked processors), not merely idle.
+  bool blocked() const { return backlog() > 0; }
+  NodeStats stats() const;
   // Primary rays shot so far; safe to read from another thread (progress reporting).
   long long primariesShot() const { return primariesShot_.load(std::memory_order_relaxed); }
 
@@ -99,11 +101,13 @@ class LogicalProcessor {
   std::size_t slotOf(int neighbour) const;
   bool flushOverflow();
   void onReceived(const Message& message);
-  void onIdle();
+  Step idleStep();
   bool passive() const;
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
   const MachineContext& context_;
+  const core::Scene& scene_;
+  core::Whitted shading_;
   NodeSetup setup_;
   BasicTransport<Real>& transport_;
   SampleRect area_;
@@ -124,11 +128,7 @@ class LogicalProcessor {
   std::uint32_t rayStamp_ = 0;
   std::vector<core::Hit> crossed_;
   core::BasicRayTreeScratch<Real> shadowScratch_;  // the shadow cache of light rays traced where they start
-  // Termination (Safra, EWD 998)
-  std::int64_t messageBalance_ = 0;  // rays sent - rays received
-  bool black_ = false;
-  bool holdingToken_ = false;
-  Token token_;
+  SafraTermination termination_;
   NodeStats stats_;
 };
 

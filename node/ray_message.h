@@ -37,7 +37,7 @@ struct BasicRayMessage {
   double attenuation = 1;         // shadow rays: product of T over objects crossed so far, in t order
   std::uint16_t destination = 0;  // processor that owns the region the ray enters
   std::uint8_t face = 0;          // face of the receiver it arrives through (statistics)
-  std::uint8_t hops = 0;          // forwardings on the way (non-adjacent destinations)
+
 };
 using RayMessage = BasicRayMessage<double>;
 

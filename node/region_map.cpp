@@ -18,7 +18,7 @@ bool adjacent(const SampleRect& a, const SampleRect& b) {
 
 RegionMap::RegionMap(std::vector<SampleRect> areas, const ScreenLines& lines, int gridColumns)
     : areas_(std::move(areas)),
-      lines_(&lines),
+      lines_(lines),
       samplesX_(lines.samples(0)),
       samplesY_(lines.samples(1)),
       gridColumns_(gridColumns) {
@@ -78,7 +78,7 @@ RegionMap RegionMap::grid(const std::vector<int>& columnStarts, const std::vecto
 int RegionMap::sampleIndex(int axis, double value, int lo, int hi) const {
   while (hi - lo > 1) {
     const int mid = (lo + hi) / 2;
-    if (lines_->at(axis, mid) <= value)
+    if (lines_.at(axis, mid) <= value)
       lo = mid;
     else
       hi = mid;

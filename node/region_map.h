@@ -23,6 +23,7 @@ class RegionMap {
                         const ScreenLines& lines);
 
   int processors() const { return int(areas_.size()); }
+  const ScreenLines& lines() const { return lines_; }
   const SampleRect& areaOf(int id) const { return areas_[id]; }
   int ownerOfSample(int sx, int sy) const { return owner_[std::size_t(sy) * samplesX_ + sx]; }
 
@@ -32,8 +33,8 @@ class RegionMap {
   bool holds(int id, const EyeFrameRay& ray, double t) const {
     const SampleRect& a = areas_[id];
     const double s = ray.screenAt(0, t), q = ray.screenAt(1, t);
-    return s >= lines_->at(0, a.x0) && s < lines_->at(0, a.x1) && q >= lines_->at(1, a.y0) &&
-           q < lines_->at(1, a.y1);
+    return s >= lines_.at(0, a.x0) && s < lines_.at(0, a.x1) && q >= lines_.at(1, a.y0) &&
+           q < lines_.at(1, a.y1);
   }
   // The processor a ray enters when it leaves region `id` at t through the faces (sStep, qStep).
   int ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, int qStep) const;
@@ -49,7 +50,7 @@ class RegionMap {
   int sampleIndex(int axis, double value, int lo, int hi) const;
 
   std::vector<SampleRect> areas_;
-  const ScreenLines* lines_;
+  ScreenLines lines_;
   int samplesX_, samplesY_;
   std::vector<std::uint16_t> owner_;  // per sample
   std::vector<std::vector<int>> neighbours_;

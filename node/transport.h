@@ -1,24 +1,17 @@
 #pragma once
 // The one interface between a node program and the rest of the machine (Priol & Bouatouch 3.5): rays to
 // the neighbours across its faces (one FIFO per neighbour, 3.7.1 figure 10), rays from neighbours,
-// contributions to the host, the termination token. The node never sees how these travel; shared-memory FIFOs
-// are one implementation, MPI could be another.
+// contributions to the host, the termination token. Every call returns at once: the node never waits and
+// never reads a clock; its driver does both (threads, SimGrid actors, MPI ranks), between steps. The node
+// never sees how rays travel: the implementations live in queues/.
 #include <cstddef>
-#include <cstdint>
-#include <functional>
 #include <span>
 
 #include "core/ray.h"
 #include "node/ray_message.h"
+#include "node/safra_termination.h"
 
 namespace raycube::node {
-
-// Safra's variant of the Dijkstra-Feijen-van Gasteren token (EWD 998), see LogicalProcessor.
-struct Token {
-  bool black = false;
-  std::int64_t count = 0;   // sum of (messages sent - messages received) of the nodes visited
-  std::uint32_t round = 0;  // probes started by node 0
-};
 
 template <class Real>
 class BasicTransport {
@@ -43,9 +36,6 @@ class BasicTransport {
   virtual void passToken(const Token& token) = 0;  // to the next node on the ring
   virtual void announceTermination() = 0;
   virtual bool terminated() const = 0;
-
-  // Sleep (after a short spin) until ready() holds; any arriving ray, token or termination re-checks it.
-  virtual void waitUntil(const std::function<bool()>& ready) = 0;
 };
 using Transport = BasicTransport<double>;
 

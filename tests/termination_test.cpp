@@ -75,7 +75,7 @@ TEST(TerminationTest, CapacityOneOnEightByEightFinishes) {
   EXPECT_GT(t.refused, 0u) << "some sends must find a full FIFO";
   std::printf(
       "8x8 capacity 1, %dx%d: %llu messages, %llu refused pushes, %u token rounds, %llu token passes\n", side,
-      side, (unsigned long long)t.messages, (unsigned long long)t.refused, report.probes,
+      side, (unsigned long long)t.messages, (unsigned long long)t.refused, report.tokenRounds,
       (unsigned long long)report.tokenPasses);
 }
 
@@ -119,9 +119,9 @@ TEST(TerminationTest, NeverDeclaredEarlyUnderRandomDelays) {
     if (testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count() != before)
       ++failures;
     tokenPasses.push_back(report.tokenPasses);
-    rounds.push_back(report.probes);
+    rounds.push_back(report.tokenRounds);
     messages.push_back(totalsOf(report).messages);
-    EXPECT_GE(report.probes, 1u) << label;
+    EXPECT_GE(report.tokenRounds, 1u) << label;
   }
   EXPECT_EQ(failures, 0) << "stopped after " << tokenPasses.size() << " runs";
   const std::string summary = "runs " + std::to_string(tokenPasses.size()) +

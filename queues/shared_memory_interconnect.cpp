@@ -1,14 +1,13 @@
-#include "host/shared_memory_transport.h"
+#include "queues/shared_memory_interconnect.h"
 
 #include <algorithm>
 
-#include "queues/wait.h"
 
-namespace raycube::host {
+namespace raycube::queues {
 namespace {
 
-std::vector<queues::Doorbell*> rawBells(const std::vector<std::unique_ptr<queues::Doorbell>>& bells) {
-  std::vector<queues::Doorbell*> raw;
+std::vector<Doorbell*> rawBells(const std::vector<std::unique_ptr<Doorbell>>& bells) {
+  std::vector<Doorbell*> raw;
   for (const auto& b : bells) raw.push_back(b.get());
   return raw;
 }
@@ -16,10 +15,10 @@ std::vector<queues::Doorbell*> rawBells(const std::vector<std::unique_ptr<queues
 }  // namespace
 
 template <class Real>
-class SharedMemoryMachine<Real>::Endpoint final : public node::BasicTransport<Real> {
+class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTransport<Real> {
  public:
   using Message = node::BasicRayMessage<Real>;
-  Endpoint(SharedMemoryMachine& machine, int id)
+  Endpoint(SharedMemoryInterconnect& machine, int id)
       : machine_(machine), id_(id), sender_(machine.channel_.sender(id)) {
     for (int n : machine.regions_.neighbours(id)) incoming_.push_back(machine.queue(n, id));
   }
@@ -66,12 +65,9 @@ class SharedMemoryMachine<Real>::Endpoint final : public node::BasicTransport<Re
     machine_.channel_.doorbell().ring();
   }
   bool terminated() const override { return machine_.terminated(); }
-  void waitUntil(const std::function<bool()>& ready) override {
-    queues::waitUntil(*machine_.bells_[id_], ready, queues::WaitPolicy{4, 8});
-  }
 
  private:
-  SharedMemoryMachine& machine_;
+  SharedMemoryInterconnect& machine_;
   int id_;
   ContributionChannel::Sender sender_;
   std::vector<RayQueue*> incoming_;
@@ -79,49 +75,50 @@ class SharedMemoryMachine<Real>::Endpoint final : public node::BasicTransport<Re
 };
 
 template <class Real>
-SharedMemoryMachine<Real>::SharedMemoryMachine(const node::RegionMap& regions, std::size_t queueCapacity)
+SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& regions, std::size_t queueCapacity)
     : regions_(regions),
       bells_([&] {
-        std::vector<std::unique_ptr<queues::Doorbell>> bells;
-        for (int p = 0; p < regions.processors(); ++p) bells.push_back(std::make_unique<queues::Doorbell>());
+        std::vector<std::unique_ptr<Doorbell>> bells;
+        for (int p = 0; p < regions.processors(); ++p) bells.push_back(std::make_unique<Doorbell>());
         return bells;
       }()),
-      channel_(std::size_t(regions.processors()), kContributionBlocksPerProcessor, rawBells(bells_)) {
+      channel_(std::size_t(regions.processors()), node::scheduling::kContributionBlocksPerProcessor,
+               rawBells(bells_)) {
   const int processors = regions.processors();
   outgoing_.resize(std::size_t(processors));
   for (int p = 0; p < processors; ++p) {
     mailboxes_.push_back(std::make_unique<Mailbox>());
     for (int n : regions.neighbours(p))
-      outgoing_[p].push_back(std::make_unique<RayQueue>(queues::SpscOptions{
+      outgoing_[p].push_back(std::make_unique<RayQueue>(SpscOptions{
           .capacity = queueCapacity, .consumerBell = bells_[n].get(), .producerBell = bells_[p].get()}));
   }
   for (int p = 0; p < processors; ++p) endpoints_.push_back(std::make_unique<Endpoint>(*this, p));
 }
 
 template <class Real>
-SharedMemoryMachine<Real>::~SharedMemoryMachine() = default;
+SharedMemoryInterconnect<Real>::~SharedMemoryInterconnect() = default;
 
 template <class Real>
-node::BasicTransport<Real>& SharedMemoryMachine<Real>::endpoint(int processor) {
+node::BasicTransport<Real>& SharedMemoryInterconnect<Real>::endpoint(int processor) {
   return *endpoints_[processor];
 }
 
 template <class Real>
-typename SharedMemoryMachine<Real>::RayQueue* SharedMemoryMachine<Real>::queue(int from, int to) const {
+typename SharedMemoryInterconnect<Real>::RayQueue* SharedMemoryInterconnect<Real>::queue(int from, int to) const {
   const std::vector<int>& n = regions_.neighbours(from);
   const auto k = std::size_t(std::lower_bound(n.begin(), n.end(), to) - n.begin());
   return outgoing_[from][k].get();
 }
 
 template <class Real>
-queues::QueueStats SharedMemoryMachine<Real>::outgoingStats(int processor, node::Face face) const {
-  queues::QueueStats sum;
+QueueStats SharedMemoryInterconnect<Real>::outgoingStats(int processor, node::Face face) const {
+  QueueStats sum;
   for (int n : regions_.neighbours(processor))
     if (regions_.faceToward(processor, n) == face) sum += queue(processor, n)->stats();
   return sum;
 }
 
-template class SharedMemoryMachine<float>;
-template class SharedMemoryMachine<double>;
+template class SharedMemoryInterconnect<float>;
+template class SharedMemoryInterconnect<double>;
 
-}  // namespace raycube::host
+}  // namespace raycube::queues

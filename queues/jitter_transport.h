@@ -8,7 +8,7 @@
 
 #include "node/transport.h"
 
-namespace raycube::host {
+namespace raycube::queues {
 
 template <class Real>
 class JitterTransport final : public node::BasicTransport<Real> {
@@ -46,7 +46,6 @@ class JitterTransport final : public node::BasicTransport<Real> {
   }
   void announceTermination() override { inner_.announceTermination(); }
   bool terminated() const override { return inner_.terminated(); }
-  void waitUntil(const std::function<bool()>& ready) override { inner_.waitUntil(ready); }
 
  private:
   // Mostly nothing, sometimes a yield, rarely a sleep of up to 50 microseconds.
@@ -60,4 +59,4 @@ class JitterTransport final : public node::BasicTransport<Real> {
   std::minstd_rand random_;
 };
 
-}  // namespace raycube::host
+}  // namespace raycube::queues

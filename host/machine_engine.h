@@ -1,0 +1,36 @@
+#pragma once
+// How the host runs the logical processors it has set up (Priol & Bouatouch 3.2 steps 2-3, 3.5): threads
+// on shared-memory FIFOs, SimGrid actors in simulated time, MPI ranks. The host hands over the shared
+// context and one setup per processor; the engine builds the nodes (each subdivides its own region),
+// starts the synthesis phase, hands every contribution to the host's sink until the token ring has proved
+// termination, and returns every processor's counts. An engine is a new file: renderMachine stays as is.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "core/contribution_sink.h"
+#include "host/machine.h"
+#include "node/logical_processor.h"
+
+namespace raycube::host {
+
+struct EngineHooks {
+  core::ContributionSink* host = nullptr;  // the host's accumulation: called from one thread at a time
+  std::function<void()> synthesisStarts;    // every node has subdivided its region: preprocessing ends
+  // Primary rays shot so far, over all processors (progress): called now and then by the host's loop.
+  std::function<void(long long primariesShot)> progress;
+};
+
+template <class Real>
+class MachineEngine {
+ public:
+  virtual ~MachineEngine() = default;
+  virtual std::vector<ProcessorReport> run(const node::MachineContext& context,
+                                           std::vector<node::NodeSetup> setups, const EngineHooks& hooks) = 0;
+};
+
+// The engine the settings ask for: threads on shared memory (with the jitter wrapper when asked).
+template <class Real>
+std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings);
+
+}  // namespace raycube::host

@@ -1,0 +1,100 @@
+#include "host/threaded_machine.h"
+
+#include <chrono>
+#include <latch>
+#include <thread>
+
+#include "node/scheduling.h"
+#include "queues/jitter_transport.h"
+#include "queues/shared_memory_interconnect.h"
+
+namespace raycube::host {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A processor's thread: step the node; when it has nothing to do, sleep until something arrives, and
+// count the time asleep as blocked (rays held for a full neighbour) or idle.
+template <class Real>
+void drive(node::LogicalProcessor<Real>& node, queues::SharedMemoryInterconnect<Real>& interconnect, int id,
+           ProcessorReport& times) {
+  for (;;) {
+    const node::Step step = node.step();
+    if (step == node::Step::Terminated) return;
+    if (step == node::Step::Worked) continue;
+    const auto start = Clock::now();
+    const bool blocked = node.blocked();
+    interconnect.waitFor(id, [&] { return node.readyToStep(); });
+    (blocked ? times.blockedSeconds : times.idleSeconds) +=
+        std::chrono::duration<double>(Clock::now() - start).count();
+  }
+}
+
+}  // namespace
+
+template <class Real>
+std::vector<ProcessorReport> ThreadedMachine<Real>::run(const node::MachineContext& context,
+                                                        std::vector<node::NodeSetup> setups,
+                                                        const EngineHooks& hooks) {
+  const int processors = int(setups.size());
+  queues::SharedMemoryInterconnect<Real> interconnect(context.regions, queueCapacity_);
+  std::vector<std::unique_ptr<queues::JitterTransport<Real>>> jitters;
+  std::vector<node::BasicTransport<Real>*> transports;
+  for (int id = 0; id < processors; ++id) {
+    transports.push_back(&interconnect.endpoint(id));
+    if (jitterSeed_ > 0) {
+      jitters.push_back(
+          std::make_unique<queues::JitterTransport<Real>>(*transports.back(), jitterSeed_ * 7919u + unsigned(id)));
+      transports.back() = jitters.back().get();
+    }
+  }
+  // 3.2 steps 2-3: every processor subdivides its own region into cells, in its own thread; when all have
+  // done so the host lets the synthesis phase begin.
+  std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> nodes(setups.size());
+  std::vector<ProcessorReport> reports(setups.size());
+  std::latch subdivided(processors);
+  std::latch synthesis(1);
+  std::vector<std::thread> threads;
+  for (int id = 0; id < processors; ++id)
+    threads.emplace_back([&, id] {
+      nodes[id] = std::make_unique<node::LogicalProcessor<Real>>(context, std::move(setups[id]), *transports[id]);
+      subdivided.count_down();
+      synthesis.wait();
+      drive(*nodes[id], interconnect, id, reports[id]);
+    });
+  subdivided.wait();
+  if (hooks.synthesisStarts) hooks.synthesisStarts();
+  synthesis.count_down();
+  // The host thread (3.5.1): accumulate contributions until the ring has proved termination.
+  queues::ContributionChannel& channel = interconnect.hostChannel();
+  auto accumulate = [&](const core::Contribution& c) { hooks.host->add(c); };
+  while (!interconnect.terminated()) {
+    channel.drain(accumulate);
+    if (hooks.progress) {
+      long long shot = 0;
+      for (const auto& n : nodes) shot += n->primariesShot();
+      hooks.progress(shot);
+    }
+    std::this_thread::sleep_for(node::scheduling::kHostBatchingPause);
+    queues::waitUntil(channel.doorbell(), [&] { return interconnect.terminated() || channel.anyPending(); });
+  }
+  for (std::thread& t : threads) t.join();
+  channel.drain(accumulate);
+  for (int id = 0; id < processors; ++id) {
+    reports[id].node = nodes[id]->stats();
+    for (int f = 0; f < node::kFaces; ++f) reports[id].outgoing[f] = interconnect.outgoingStats(id, node::Face(f));
+  }
+  return reports;
+}
+
+template <class Real>
+std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings) {
+  return std::make_unique<ThreadedMachine<Real>>(settings.queueCapacity, settings.jitterSeed);
+}
+
+template class ThreadedMachine<float>;
+template class ThreadedMachine<double>;
+template std::unique_ptr<MachineEngine<float>> makeEngine<float>(const MachineSettings&);
+template std::unique_ptr<MachineEngine<double>> makeEngine<double>(const MachineSettings&);
+
+}  // namespace raycube::host

@@ -1,0 +1,21 @@
+#pragma once
+// The machine on threads (the emulator's default engine): one thread per logical processor on the
+// shared-memory interconnect (queues/shared_memory_interconnect.h); the calling thread is the host.
+#include "host/machine_engine.h"
+
+namespace raycube::host {
+
+template <class Real>
+class ThreadedMachine final : public MachineEngine<Real> {
+ public:
+  ThreadedMachine(std::size_t queueCapacity, unsigned jitterSeed)
+      : queueCapacity_(queueCapacity), jitterSeed_(jitterSeed) {}
+  std::vector<ProcessorReport> run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
+                                   const EngineHooks& hooks) override;
+
+ private:
+  std::size_t queueCapacity_;
+  unsigned jitterSeed_;  // > 0: random delays around every transport operation (tests)
+};
+
+}  // namespace raycube::host

@@ -1,0 +1,37 @@
+#pragma once
+// Every scheduling constant of the machine in one place, with its reason (as core/tolerances.h does for
+// numerical tolerances). None changes what is computed, only when: the image and the ray counts are the
+// same for any value. They matter because 16 to 64 logical processors and a host share two cores.
+#include <chrono>
+#include <cstddef>
+
+namespace raycube::node::scheduling {
+
+// Rays a node takes from its incoming FIFOs per step: enough to amortise a scan of its faces, few enough
+// that its primaries and the token are not starved behind a long burst.
+inline constexpr std::size_t kInboxBatch = 32;
+
+// 3.5.2 back-pressure, as on the iPSC where a full FIFO locked the synthesis task: no new primary ray while
+// more than this many rays wait for room in a neighbour's FIFO. Received rays are still consumed, so a
+// cycle of full FIFOs always drains (2.2); the limit only bounds the overflow lists.
+inline constexpr std::size_t kBacklogLimit = 64;
+
+// How a waiting thread waits: spin a little (a handoff from the other core), yield so the thread that
+// would unblock it can run, then sleep on its doorbell.
+struct SpinThenYield {
+  int spins;
+  int yields;
+};
+// A node: 64 nodes share 2 cores, so spinning long only steals the core from the node that would wake it.
+inline constexpr SpinThenYield kNodeWait{4, 8};
+
+// The host lets contribution blocks pile up this long between drains: one wake-up per batch of blocks,
+// not per block, since the host thread shares the two cores with every processor.
+inline constexpr auto kHostBatchingPause = std::chrono::microseconds(500);
+
+// Contributions per block a node ships to the host (3.4), and blocks it may have in flight before it
+// waits: enough for the host's batching pause at the machine's peak rate.
+inline constexpr std::size_t kContributionBlock = 256;
+inline constexpr std::size_t kContributionBlocksPerProcessor = 32;
+
+}  // namespace raycube::node::scheduling

@@ -1,0 +1,64 @@
+#pragma once
+// The machine's interconnect in one address space (Priol & Bouatouch 3.5): a bounded lock-free FIFO per
+// directed adjacency (capacity --queue-capacity, 128 as on the iPSC), a doorbell per processor, a token
+// mailbox per processor on the ring (3.6), and a block channel per processor to the host (3.4). Each
+// processor talks to it through its endpoint (the node's transport); the threads' driver waits on the
+// processor's doorbell, and the host drains the channel.
+#include <atomic>
+#include <memory>
+#include <vector>
+
+#include "node/region_map.h"
+#include "node/scheduling.h"
+#include "node/transport.h"
+#include "queues/doorbell.h"
+#include "queues/host_channel.h"
+#include "queues/spsc_queue.h"
+#include "queues/wait.h"
+
+namespace raycube::queues {
+
+using ContributionChannel = HostChannel<core::Contribution, node::scheduling::kContributionBlock>;
+
+// Real: the precision of the rays the FIFOs carry (node::BasicRayMessage<Real>).
+template <class Real>
+class SharedMemoryInterconnect {
+ public:
+  using RayQueue = SpscQueue<node::BasicRayMessage<Real>, Accounting::kOn>;
+
+  SharedMemoryInterconnect(const node::RegionMap& regions, std::size_t queueCapacity);
+  SharedMemoryInterconnect(const SharedMemoryInterconnect&) = delete;
+  SharedMemoryInterconnect& operator=(const SharedMemoryInterconnect&) = delete;
+  ~SharedMemoryInterconnect();
+
+  node::BasicTransport<Real>& endpoint(int processor);
+  // The driver of a processor's thread: returns once ready() holds (spin, yield, then sleep on its bell).
+  template <class Ready>
+  void waitFor(int processor, Ready&& ready) {
+    const auto policy = node::scheduling::kNodeWait;
+    waitUntil(*bells_[processor], ready, WaitPolicy{policy.spins, policy.yields});
+  }
+  ContributionChannel& hostChannel() { return channel_; }
+  bool terminated() const { return terminated_.load(std::memory_order_acquire); }
+  // Saturation of the FIFOs a processor sends into, summed per face of the processor.
+  QueueStats outgoingStats(int processor, node::Face face) const;
+
+ private:
+  class Endpoint;
+  struct Mailbox {
+    std::atomic<bool> full{false};
+    node::Token token;
+  };
+  RayQueue* queue(int from, int to) const;
+
+  const node::RegionMap& regions_;
+  std::vector<std::unique_ptr<Doorbell>> bells_;
+  // outgoing_[p][k]: from processor p to its k-th neighbour
+  std::vector<std::vector<std::unique_ptr<RayQueue>>> outgoing_;
+  std::vector<std::unique_ptr<Mailbox>> mailboxes_;
+  ContributionChannel channel_;
+  std::atomic<bool> terminated_{false};
+  std::vector<std::unique_ptr<Endpoint>> endpoints_;
+};
+
+}  // namespace raycube::queues
