@@ -1,0 +1,205 @@
+// One logical processor, and a few of them, against a fake transport stepped by hand in one thread: what
+// goes in (primary rays, received rays, the token) and what comes out (rays, contributions, counts),
+// with no thread, no clock and no waiting (node/logical_processor.h).
+#include "node/logical_processor.h"
+
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <map>
+#include <optional>
+
+#include "core/balls.h"
+#include "core/framebuffer.h"
+#include "host/sequential_renderers.h"
+
+namespace raycube::node {
+namespace {
+
+using Message = RayMessage;
+
+// Every FIFO of a small machine as plain deques of a fixed capacity, the token as an optional per node.
+struct FakeInterconnect {
+  FakeInterconnect(const RegionMap& regions, std::size_t capacity) : regions(regions), capacity(capacity) {
+    tokens.resize(std::size_t(regions.processors()));
+  }
+  std::deque<Message>& fifo(int from, int to) { return fifos[{from, to}]; }
+
+  const RegionMap& regions;
+  std::size_t capacity;
+  std::map<std::pair<int, int>, std::deque<Message>> fifos;
+  std::vector<std::optional<Token>> tokens;
+  std::vector<core::Contribution> contributions;
+  std::size_t raysSent = 0;
+  bool terminated = false;
+};
+
+class FakeTransport final : public Transport {
+ public:
+  FakeTransport(FakeInterconnect& net, int id) : net_(net), id_(id) {}
+  std::size_t trySend(int neighbour, std::span<const Message> messages) override {
+    std::deque<Message>& q = net_.fifo(id_, neighbour);
+    std::size_t n = 0;
+    for (; n < messages.size() && q.size() < net_.capacity; ++n) q.push_back(messages[n]);
+    net_.raysSent += n;
+    return n;
+  }
+  std::size_t receive(std::span<Message> into) override {
+    std::size_t n = 0;
+    for (int from : net_.regions.neighbours(id_)) {
+      std::deque<Message>& q = net_.fifo(from, id_);
+      while (!q.empty() && n < into.size()) {
+        into[n++] = q.front();
+        q.pop_front();
+      }
+    }
+    return n;
+  }
+  bool anyIncoming() const override {
+    for (int from : net_.regions.neighbours(id_))
+      if (!net_.fifo(from, id_).empty()) return true;
+    return false;
+  }
+  bool canSend(int neighbour) const override { return net_.fifo(id_, neighbour).size() < net_.capacity; }
+  void sendContribution(const core::Contribution& c) override { unsent_.push_back(c); }
+  void flushContributions() override {
+    net_.contributions.insert(net_.contributions.end(), unsent_.begin(), unsent_.end());
+    unsent_.clear();
+  }
+  bool hasToken() const override { return net_.tokens[id_].has_value(); }
+  bool receiveToken(Token& token) override {
+    if (!hasToken()) return false;
+    token = *net_.tokens[id_];
+    net_.tokens[id_].reset();
+    return true;
+  }
+  void passToken(const Token& token) override {
+    net_.tokens[std::size_t((id_ + 1) % net_.regions.processors())] = token;
+  }
+  void announceTermination() override { net_.terminated = true; }
+  bool terminated() const override { return net_.terminated; }
+
+ private:
+  FakeInterconnect& net_;
+  int id_;
+  std::vector<core::Contribution> unsent_;
+};
+
+class LogicalProcessorTest : public ::testing::Test {
+ protected:
+  static constexpr int kSide = 24;
+
+  LogicalProcessorTest() : scene_(core::makeBalls(1)) {}
+
+  MachineContext contextFor(int columns, int rows) const {
+    const core::View view(scene_.camera, kSide, kSide, core::Sampling::Centers);
+    const ScreenLines lines(view);
+    auto cuts = [](int samples, int parts) {
+      std::vector<int> c;
+      for (int k = 0; k <= parts; ++k) c.push_back(samples * k / parts);
+      return c;
+    };
+    std::vector<EyeBox> boxes;
+    for (const core::Object& o : scene_.objects) boxes.push_back(eyeBoxOf(o, view));
+    return MachineContext{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene_), view,
+                          core::ShadingOptions{},
+                          RegionMap::grid(cuts(kSide, columns), cuts(kSide, rows), lines), boxes};
+  }
+
+  // Every object offered to every node (the node keeps those touching its region), light rays as messages.
+  static NodeSetup setupFor(const MachineContext& context, int id) {
+    NodeSetup s;
+    s.id = id;
+    s.lightRays = LightRayMode::Messages;
+    for (std::uint32_t o = 0; o < context.eyeBoxes.size(); ++o) {
+      s.objects.push_back(o);
+      if (reachesBehindEye(context.eyeBoxes[o])) s.rearObjects.push_back(o);
+    }
+    return s;
+  }
+
+  core::Image referenceImage() const {
+    host::RenderSettings settings;
+    settings.width = settings.height = kSide;
+    settings.progress = false;
+    return host::renderReference(scene_, settings).image;
+  }
+
+  static core::Image imageOf(const MachineContext& context, const std::vector<core::Contribution>& cs) {
+    core::Framebuffer frame(context.view.samplesX(), context.view.samplesY());
+    for (const core::Contribution& c : cs) frame.add(c);
+    return frame.resolve(context.view);
+  }
+
+  core::Scene scene_;
+};
+
+TEST_F(LogicalProcessorTest, OneProcessorTracesTheWholeImageAndProvesItsOwnTermination) {
+  const MachineContext context = contextFor(1, 1);
+  FakeInterconnect net(context.regions, 4);
+  FakeTransport transport(net, 0);
+  LogicalProcessor<double> node(context, setupFor(context, 0), transport);
+  int steps = 0;
+  Step s;
+  while ((s = node.step()) != Step::Terminated) {
+    ASSERT_LT(++steps, 10 * kSide * kSide) << "the node never terminated";
+    ASSERT_TRUE(s == Step::Worked || node.readyToStep()) << "waiting with nothing that could wake it";
+  }
+  EXPECT_EQ(net.raysSent, 0u);
+  EXPECT_EQ(node.stats().tokenRounds, 1u);
+  EXPECT_EQ(core::compareImages(imageOf(context, net.contributions), referenceImage()).maxAbs, 0.0);
+  const NodeStats stats = node.stats();
+  for (int k = 0; k < core::kRayKinds; ++k) EXPECT_EQ(stats.spawned[k], stats.finished[k]) << k;
+}
+
+TEST_F(LogicalProcessorTest, AFullNeighbourBlocksTheSenderUntilItHasRoom) {
+  const MachineContext context = contextFor(2, 1);
+  FakeInterconnect net(context.regions, 1);
+  FakeTransport left(net, 0), right(net, 1);
+  LogicalProcessor<double> node0(context, setupFor(context, 0), left);
+  LogicalProcessor<double> node1(context, setupFor(context, 1), right);
+  // Only node 0 runs: it soon fills the one-ray FIFO to node 1 and must wait, blocked, not lose rays.
+  Step s = Step::Worked;
+  for (int k = 0; k < 100000 && s == Step::Worked; ++k) s = node0.step();
+  ASSERT_EQ(s, Step::Waiting);
+  EXPECT_TRUE(node0.blocked());
+  EXPECT_FALSE(node0.readyToStep());
+  EXPECT_EQ(net.fifo(0, 1).size(), 1u);
+  // Node 1 takes the ray: node 0 has room again.
+  ASSERT_EQ(node1.step(), Step::Worked);
+  EXPECT_TRUE(node0.readyToStep());
+}
+
+TEST_F(LogicalProcessorTest, ProcessorsSteppedInAnyOrderAgreeWithTheReferenceAndFinishEveryRayOnce) {
+  for (const auto& [columns, rows, capacity] :
+       std::vector<std::tuple<int, int, std::size_t>>{{2, 1, 1}, {3, 2, 2}, {4, 4, 128}}) {
+    const MachineContext context = contextFor(columns, rows);
+    FakeInterconnect net(context.regions, capacity);
+    const int processors = context.regions.processors();
+    std::vector<std::unique_ptr<FakeTransport>> transports;
+    std::vector<std::unique_ptr<LogicalProcessor<double>>> nodes;
+    for (int id = 0; id < processors; ++id) {
+      transports.push_back(std::make_unique<FakeTransport>(net, id));
+      nodes.push_back(std::make_unique<LogicalProcessor<double>>(context, setupFor(context, id), *transports[id]));
+    }
+    // Round-robin, backwards, a different number of steps per node each turn: any order must do.
+    for (int turn = 0; !net.terminated; ++turn) {
+      ASSERT_LT(turn, 1000000) << "no termination";
+      for (int id = processors - 1; id >= 0; --id)
+        for (int k = 0; k <= (turn + id) % 3; ++k) nodes[id]->step();
+    }
+    std::array<std::uint64_t, core::kRayKinds> spawned{}, finished{};
+    for (const auto& n : nodes)
+      for (int k = 0; k < core::kRayKinds; ++k) {
+        spawned[k] += n->stats().spawned[k];
+        finished[k] += n->stats().finished[k];
+      }
+    EXPECT_EQ(spawned, finished);
+    for (const auto& [edge, fifo] : net.fifos) EXPECT_TRUE(fifo.empty()) << "a ray left in a FIFO";
+    EXPECT_EQ(core::compareImages(imageOf(context, net.contributions), referenceImage()).maxAbs, 0.0)
+        << columns << "x" << rows << " capacity " << capacity;
+  }
+}
+
+}  // namespace
+}  // namespace raycube::node
