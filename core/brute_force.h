@@ -19,7 +19,7 @@ class BruteForce {
   Hit closestHit(const BasicRay<Real>& ray, TraceCounters& counters) const {
     Hit best;
     for (std::uint32_t i = 0; i < scene_.objects.size(); ++i) {
-      ++counters.intersectionTests;
+      countTest(counters, scene_.objects[i]);
       const Hit h{nearestHit(scene_.objects[i], ray, std::numeric_limits<Real>::infinity()), i};
       if (h.t < kInfinity && h.closerThan(best)) best = h;
     }
@@ -30,7 +30,7 @@ class BruteForce {
   double transmission(const BasicRay<Real>& ray, TraceCounters& counters, std::vector<Hit>& crossed) const {
     crossed.clear();
     for (std::uint32_t i = 0; i < scene_.objects.size(); ++i) {
-      ++counters.intersectionTests;
+      countTest(counters, scene_.objects[i]);
       const double t = nearestHit(scene_.objects[i], ray, ray.tMax);
       if (t == kInfinity) continue;
       if (!shading_.transmissive(i)) {

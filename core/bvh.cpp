@@ -159,7 +159,7 @@ Hit BasicBvh<Real>::closestHit(const BasicRay<Real>& ray, TraceCounters& counter
   Hit best;
   Real bestT = std::numeric_limits<Real>::infinity();
   traverse(ray, bestT, counters, [&](std::uint32_t object) {
-    ++counters.intersectionTests;
+    countTest(counters, scene_.objects[object]);
     const Hit h{nearestHit(scene_.objects[object], ray, std::numeric_limits<Real>::infinity()), object};
     if (h.t < kInfinity && h.closerThan(best)) {
       best = h;
@@ -176,7 +176,7 @@ double BasicBvh<Real>::transmission(const BasicRay<Real>& ray, TraceCounters& co
   crossed.clear();
   bool blocked = false;
   traverse(ray, ray.tMax, counters, [&](std::uint32_t object) {
-    ++counters.intersectionTests;
+    countTest(counters, scene_.objects[object]);
     const double t = nearestHit(scene_.objects[object], ray, ray.tMax);
     if (t == kInfinity) return true;
     if (!shading_.transmissive(object)) {

@@ -9,6 +9,7 @@
 #include "core/box.h"
 #include "core/ray.h"
 #include "core/scene.h"
+#include "core/trace_stats.h"
 
 namespace raycube::core {
 
@@ -42,5 +43,13 @@ struct Hit {
   bool found() const { return object != UINT32_MAX; }
   bool closerThan(const Hit& other) const { return t < other.t || (t == other.t && object < other.object); }
 };
+
+// One ray-object test, counted by primitive kind (and, for polygons, by vertex) for the cost models.
+inline void countTest(TraceCounters& counters, const Object& object) {
+  ++counters.intersectionTests;
+  ++counters.testsByShape[object.shape.index()];
+  if (const auto* polygon = std::get_if<Polygon>(&object.shape))
+    counters.polygonVerticesTested += polygon->vertices.size();
+}
 
 }  // namespace raycube::core

@@ -31,7 +31,7 @@ double shadowTransmission(const Whitted& shading, const Database& database, cons
   if (scratch.lastBlocker.size() <= ray.light) scratch.lastBlocker.resize(ray.light + 1u, UINT32_MAX);
   std::uint32_t& cached = scratch.lastBlocker[ray.light];
   if (cached != UINT32_MAX) {
-    ++counters.intersectionTests;
+    countTest(counters, shading.scene().objects[cached]);
     if (nearestHit(shading.scene().objects[cached], ray.ray, ray.ray.tMax) < kInfinity) return 0;
   }
   const double transmission = database.transmission(ray.ray, counters, scratch.crossed);

@@ -8,9 +8,14 @@
 
 namespace raycube::core {
 
+// Shapes in the order of core::Shape's alternatives (sphere, cone, polygon, patch).
+inline constexpr std::size_t kShapeKinds = 4;
+
 struct TraceCounters {
   std::array<std::uint64_t, kRayKinds> rays{};  // indexed by RayKind
   std::uint64_t intersectionTests = 0;          // ray-object tests
+  std::array<std::uint64_t, kShapeKinds> testsByShape{};  // the same, by primitive kind (cost models)
+  std::uint64_t polygonVerticesTested = 0;                // a polygon's test costs per vertex
   std::uint64_t boxTests = 0;                   // BVH node or cell steps
   std::uint64_t contributions = 0;              // pieces of pixel colour produced (section 3.4)
   std::uint64_t nonFinite = 0;                  // contributions with a NaN/Inf channel (a defect if > 0)
@@ -21,6 +26,8 @@ struct TraceCounters {
   TraceCounters& operator+=(const TraceCounters& o) {
     for (std::size_t i = 0; i < rays.size(); ++i) rays[i] += o.rays[i];
     intersectionTests += o.intersectionTests;
+    for (std::size_t i = 0; i < testsByShape.size(); ++i) testsByShape[i] += o.testsByShape[i];
+    polygonVerticesTested += o.polygonVerticesTested;
     boxTests += o.boxTests;
     contributions += o.contributions;
     nonFinite += o.nonFinite;

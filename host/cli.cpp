@@ -18,6 +18,7 @@
 #include "host/machine.h"
 #include "host/machine_report.h"
 #include "host/sequential_renderers.h"
+#include "host/simulated_report.h"
 #include "host/stats_report.h"
 #include "host/tradeoff.h"
 
@@ -67,8 +68,24 @@ struct RenderCommand {
   std::string lightRays = "pyramid";
   std::string balance = "bsp";
   std::string loadMetric = "cost";
+  std::string emulate;
+  std::string platformPath;
+  std::string costsPath;
+  std::string tracePath;
   MachineSettings machine;
 };
+
+// --emulate NAME | --platform FILE.xml, with --costs FILE: the machine to simulate, if any.
+std::optional<EmulatedPlatform> emulatedPlatform(const RenderCommand& cmd) {
+  if (!cmd.platformPath.empty()) return userPlatform(cmd.platformPath, cmd.costsPath);
+  if (cmd.emulate.empty()) {
+    if (!cmd.costsPath.empty()) throw std::invalid_argument("--costs needs --emulate or --platform");
+    return std::nullopt;
+  }
+  EmulatedPlatform platform = builtinPlatform(cmd.emulate);
+  if (!cmd.costsPath.empty()) applyCostFile(cmd.costsPath, platform);
+  return platform;
+}
 
 // "AxB" with both in [1, limit]; what names the option in the error.
 std::pair<int, int> parsePair(const std::string& text, const char* what, const char* form, int limit) {
@@ -99,6 +116,7 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
       machine.balance = kBalances.at(cmd.balance);
       machine.loadMetric = kLoadMetrics.at(cmd.loadMetric);
       std::tie(machine.rows, machine.columns) = parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
+      machine.emulate = emulatedPlatform(cmd);
       report.emplace();
       return renderMachine(scene, settings, machine, &*report);
     }
@@ -151,10 +169,16 @@ int runRender(const RenderCommand& cmd) {
   if (!cmd.statsPath.empty()) {
     nlohmann::json json = statsJson(scene, result);
     if (report) json["machine"] = machineJson(*report);
+    if (report && report->simulated) json["simulated"] = simulatedJson(*report);
     writeJson(json, cmd.statsPath);
+  }
+  if (!cmd.tracePath.empty()) {
+    if (!report || !report->simulated) throw std::invalid_argument("--trace needs --emulate or --platform");
+    writeChromeTrace(*report, cmd.tracePath);
   }
   std::cout << summaryText(scene, result);
   if (report) std::cout << machineTable(*report);
+  if (report && report->simulated) std::cout << simulatedTable(*report);
   return result.counters.nonFinite > 0 ? 3 : 0;
 }
 
@@ -208,6 +232,14 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       ->add_option("--subsample", cmd.machine.subsampleWindow,
                    "Load estimate: one sub-sampled pixel per WxW window")
       ->check(CLI::Range(1, 1024));
+  render
+      ->add_option("--emulate", cmd.emulate,
+                   "Run the machine on SimGrid in simulated time: ipsc1 (the paper's iPSC/1) | cluster")
+      ->check(CLI::IsMember({"ipsc1", "cluster"}));
+  render->add_option("--platform", cmd.platformPath,
+                     "A SimGrid platform XML to emulate (hosts node-0 ... and manager; see README)");
+  render->add_option("--costs", cmd.costsPath, "Cost table: 'name value' lines (README, Emulated machine time)");
+  render->add_option("--trace", cmd.tracePath, "Simulated timeline as Chrome trace-event JSON (Perfetto)");
   render->add_option("-o,--output", cmd.output,
                      "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");

@@ -195,14 +195,13 @@ class Accumulator final : public core::ContributionSink {
 };
 
 // Phase 6: what the run measured, per processor and in total.
-void reportRun(std::vector<ProcessorReport> processors, const std::vector<double>& estimatedLoad,
-               const LoadSample& load, std::size_t messageBytes, const node::RegionMap& regions,
-               const MachineSettings& machine, RenderResult& result, MachineReport& out) {
-  out.settings = machine;
+void reportRun(MachineRun run, const std::vector<double>& estimatedLoad, const LoadSample& load,
+               std::size_t messageBytes, RenderResult& result, MachineReport& out) {
+  std::vector<ProcessorReport>& processors = run.processors;
   out.messageBytes = messageBytes;
   out.estimatedLoad = estimatedLoad;
   out.subsampledRays = load.raysTraced;
-  mapOntoHypercube(regions, machine, out);
+  out.simulated = std::move(run.simulated);
   for (const ProcessorReport& pr : processors) {
     result.counters += pr.node.processed;
     out.tokenPasses += pr.node.tokenVisits;
@@ -239,8 +238,12 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   result.precision = core::kPrecisionOf<Real>;
   result.workers = context.regions.processors();
 
+  MachineReport local;
+  MachineReport& out = report ? *report : local;
+  out.settings = machine;
+  mapOntoHypercube(context.regions, machine, out);
   Accumulator host(view);
-  std::vector<ProcessorReport> processors;
+  MachineRun run;
   auto traceStart = Clock::now();
   {
     Progress progress("machine", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
@@ -255,18 +258,16 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
       progress.advance(std::uint64_t(shot - reported));
       reported = shot;
     };
-    processors = makeEngine<Real>(machine)->run(context, std::move(setups), hooks);
+    run = makeEngine<Real>(machine, out.hypercubeNode)->run(context, std::move(setups), hooks);
   }
   result.image = host.frame().resolve(view);
   result.traceSeconds = secondsSince(traceStart);
 
-  MachineReport local;
-  MachineReport& out = report ? *report : local;
   std::vector<node::SampleRect> areas;
   for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
   out.contributionsAccumulated = host.count();
-  reportRun(std::move(processors), estimateLoads(areas, load, machine.loadMetric), load,
-            sizeof(node::BasicRayMessage<Real>), context.regions, machine, result, out);
+  reportRun(std::move(run), estimateLoads(areas, load, machine.loadMetric), load,
+            sizeof(node::BasicRayMessage<Real>), result, out);
   return result;
 }
 

@@ -3,9 +3,12 @@
 // areas (an R x C grid, 3.1, or a BSP of equal estimated loads, 3.7.1), prunes the database for each region
 // (3.2 step 1) and for its light volumes (3.7.2), starts one thread per logical processor, accumulates the
 // contributions they send (3.4, 3.5.1) and stops when the token ring has proved termination (3.6).
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/scene.h"
+#include "host/emulated_platform.h"
 #include "host/load_estimate.h"
 #include "host/render_result.h"
 #include "host/render_settings.h"
@@ -29,14 +32,38 @@ struct MachineSettings {
   int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
   unsigned jitterSeed = 0;  // tests: > 0 injects random delays around every transport operation
+  std::optional<EmulatedPlatform> emulate;  // set: run on SimGrid in that machine's simulated time
 };
 
 struct ProcessorReport {
   node::NodeStats node;
   std::array<queues::QueueStats, node::kFaces> outgoing;  // FIFOs it sends into
-  // Kept by the engine's driver, in its clock (wall seconds for threads):
+  // Kept by the engine's driver, in its clock (wall seconds for threads, simulated seconds on SimGrid):
   double blockedSeconds = 0;  // waiting while holding rays its full neighbours would not take (3.6)
   double idleSeconds = 0;     // waiting with nothing to do
+  double computeSeconds = 0;  // simulated only: charged for its own counted work
+  double forwardSeconds = 0;  // simulated only: relaying others' messages (store and forward)
+};
+
+// A run in simulated time (the SimGrid engine): the emulated machine's clock.
+enum class ProcessorState : std::uint8_t { Computing, Blocked, Idle };
+struct TimelineInterval {
+  double start = 0, end = 0;  // simulated seconds
+  std::uint32_t processor = 0;
+  ProcessorState state = ProcessorState::Computing;
+};
+struct LinkTraffic {
+  std::uint32_t from = 0, to = 0;  // hypercube nodes; to == kHostNode: the link to the host
+  std::uint64_t messages = 0, bytes = 0;
+};
+inline constexpr std::uint32_t kHostNode = UINT32_MAX;
+struct SimulatedRun {
+  std::string platform;
+  double makespan = 0;  // simulated seconds from the start of synthesis to the last contribution
+  std::uint64_t rayMessages = 0;  // simulated ray messages, relays included
+  double wallSeconds = 0;         // what the simulation took on this host
+  std::vector<LinkTraffic> links;
+  std::vector<TimelineInterval> timeline;
 };
 
 struct MachineReport {
@@ -55,6 +82,7 @@ struct MachineReport {
   std::size_t messageBytes = 0;  // sizeof the ray message in the render's precision
   std::uint64_t contributionsAccumulated = 0;
   std::uint32_t tokenRounds = 0;  // started by processor 0
+  std::optional<SimulatedRun> simulated;
   std::uint64_t tokenPasses = 0;  // token visits over all processors
 };
 

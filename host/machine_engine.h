@@ -21,16 +21,23 @@ struct EngineHooks {
   std::function<void(long long primariesShot)> progress;
 };
 
+struct MachineRun {
+  std::vector<ProcessorReport> processors;
+  std::optional<SimulatedRun> simulated;  // engines with a clock of their own
+};
+
 template <class Real>
 class MachineEngine {
  public:
   virtual ~MachineEngine() = default;
-  virtual std::vector<ProcessorReport> run(const node::MachineContext& context,
-                                           std::vector<node::NodeSetup> setups, const EngineHooks& hooks) = 0;
+  virtual MachineRun run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
+                         const EngineHooks& hooks) = 0;
 };
 
-// The engine the settings ask for: threads on shared memory (with the jitter wrapper when asked).
+// The engine the settings ask for: threads on shared memory (with the jitter wrapper when asked), or
+// SimGrid actors in simulated time (settings.emulate). hypercubeNode: each processor's node on the cube.
 template <class Real>
-std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings);
+std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings,
+                                                const std::vector<std::uint32_t>& hypercubeNode);
 
 }  // namespace raycube::host

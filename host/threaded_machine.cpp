@@ -33,9 +33,8 @@ void drive(node::LogicalProcessor<Real>& node, queues::SharedMemoryInterconnect<
 }  // namespace
 
 template <class Real>
-std::vector<ProcessorReport> ThreadedMachine<Real>::run(const node::MachineContext& context,
-                                                        std::vector<node::NodeSetup> setups,
-                                                        const EngineHooks& hooks) {
+MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
+                                      const EngineHooks& hooks) {
   const int processors = int(setups.size());
   queues::SharedMemoryInterconnect<Real> interconnect(context.regions, queueCapacity_);
   std::vector<std::unique_ptr<queues::JitterTransport<Real>>> jitters;
@@ -84,17 +83,10 @@ std::vector<ProcessorReport> ThreadedMachine<Real>::run(const node::MachineConte
     reports[id].node = nodes[id]->stats();
     for (int f = 0; f < node::kFaces; ++f) reports[id].outgoing[f] = interconnect.outgoingStats(id, node::Face(f));
   }
-  return reports;
-}
-
-template <class Real>
-std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings) {
-  return std::make_unique<ThreadedMachine<Real>>(settings.queueCapacity, settings.jitterSeed);
+  return MachineRun{std::move(reports), std::nullopt};
 }
 
 template class ThreadedMachine<float>;
 template class ThreadedMachine<double>;
-template std::unique_ptr<MachineEngine<float>> makeEngine<float>(const MachineSettings&);
-template std::unique_ptr<MachineEngine<double>> makeEngine<double>(const MachineSettings&);
 
 }  // namespace raycube::host

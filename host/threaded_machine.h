@@ -10,8 +10,8 @@ class ThreadedMachine final : public MachineEngine<Real> {
  public:
   ThreadedMachine(std::size_t queueCapacity, unsigned jitterSeed)
       : queueCapacity_(queueCapacity), jitterSeed_(jitterSeed) {}
-  std::vector<ProcessorReport> run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
-                                   const EngineHooks& hooks) override;
+  MachineRun run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
+                 const EngineHooks& hooks) override;
 
  private:
   std::size_t queueCapacity_;

@@ -103,7 +103,7 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
   const double tLimit = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
   auto nearest = [&](std::uint32_t object) {
     if (mailboxStamp_[object] != rayStamp_) {
-      ++stats_.processed.intersectionTests;
+      core::countTest(stats_.processed, scene.objects[object]);
       mailboxStamp_[object] = rayStamp_;
       mailboxT_[object] = core::nearestHit(scene.objects[object], ray.ray, tLimit);
     }

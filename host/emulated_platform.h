@@ -1,0 +1,59 @@
+#pragma once
+// A machine to emulate in simulated time (the SimGrid engine): how fast its nodes compute, what its links
+// cost, how messages are routed, and what each operation the node counts costs. Time is charged from
+// counted work, never measured, so a simulated time is the same on every run and every computer.
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "node/logical_processor.h"
+#include "queues/routing.h"
+
+namespace raycube::host {
+
+// Flop-equivalents per operation a node counts (hand counts of the floating-point operations in core/ and
+// node/; a copy of a ray message counts as a few). Only their ratios matter: the platform's node speed turns
+// them into seconds.
+struct CostTable {
+  double sphereTest = 25;     // oc = o - c, b = oc.d, c = oc.oc - r^2, b^2 - c, sqrt, two roots
+  double coneTest = 60;       // a quadric in the cone's frame plus two caps
+  double polygonTest = 20;    // plane hit: n.d, (dist - n.o) / n.d, the point
+  double polygonVertex = 6;   // the crossing test, per edge
+  double patchTest = 45;      // a triangle and the interpolated normal
+  double cellStep = 6;        // one step of the walk through the region's cells (3.3)
+  double raySegment = 50;     // a ray taken up in a region: eye-frame conversion, entry cell
+  double rayFinished = 60;    // shading where a ray ends: point, normal, Phong terms, or the light term
+  double raySpawned = 25;     // a reflected, refracted or light ray: direction, weight, owner lookup
+  double contribution = 5;    // a piece of pixel colour into the block for the host
+  double messageSent = 30;    // packing a ray message into a FIFO
+  double messageReceived = 30;
+  double messageRelayed = 60;  // store and forward: a node receives and re-sends another's message
+  double tokenVisit = 20;
+
+  // What a node's counted work costs, in flop-equivalents (linear: a difference of two calls is the cost
+  // of the work between them).
+  double flopsOf(const node::NodeStats& stats) const;
+};
+
+using queues::Routing;
+
+struct EmulatedPlatform {
+  std::string name;
+  double nodeSpeed = 1;                 // flop-equivalents per second
+  double linkLatency = 0;               // s, per hop
+  double linkBandwidth = 1;             // bytes/s, per direction
+  double hostLinkLatency = 0;           // node to host (the cube manager)
+  double hostLinkBandwidth = 1;
+  Routing routing = Routing::Direct;
+  std::filesystem::path platformFile;  // a user's SimGrid platform (hosts node-0 ... and manager); empty: built in
+  CostTable costs;
+};
+
+// "ipsc1" or "cluster"; throws std::invalid_argument naming the choices otherwise.
+EmulatedPlatform builtinPlatform(std::string_view name);
+// --platform FILE.xml [--costs FILE]: a SimGrid platform and a cost table of "name value" lines (any
+// CostTable field, plus nodeSpeed and routing store-and-forward|direct). Errors name file:line.
+EmulatedPlatform userPlatform(const std::filesystem::path& platformFile, const std::filesystem::path& costs);
+void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platform);
+
+}  // namespace raycube::host

@@ -1,0 +1,21 @@
+#include "host/machine_engine.h"
+
+#include "host/simulated_machine.h"
+#include "host/threaded_machine.h"
+
+namespace raycube::host {
+
+template <class Real>
+std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings,
+                                                const std::vector<std::uint32_t>& hypercubeNode) {
+  if (settings.emulate)
+    return std::make_unique<SimulatedMachine<Real>>(*settings.emulate, settings.queueCapacity, hypercubeNode);
+  return std::make_unique<ThreadedMachine<Real>>(settings.queueCapacity, settings.jitterSeed);
+}
+
+template std::unique_ptr<MachineEngine<float>> makeEngine<float>(const MachineSettings&,
+                                                                 const std::vector<std::uint32_t>&);
+template std::unique_ptr<MachineEngine<double>> makeEngine<double>(const MachineSettings&,
+                                                                   const std::vector<std::uint32_t>&);
+
+}  // namespace raycube::host

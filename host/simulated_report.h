@@ -1,0 +1,19 @@
+#pragma once
+// What a run in simulated time reports (the SimGrid engine): the emulated machine's clock per processor,
+// traffic per link, and the timeline as a trace a standard viewer opens.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "host/machine.h"
+
+namespace raycube::host {
+
+// Share of the processors' time (makespan x processors) spent blocked on full FIFOs (3.6's "locked").
+double blockedShare(const MachineReport& report);
+std::string simulatedTable(const MachineReport& report);
+nlohmann::json simulatedJson(const MachineReport& report);
+// Chrome trace-event JSON (Perfetto, chrome://tracing): one track per processor, one slice per state.
+void writeChromeTrace(const MachineReport& report, const std::filesystem::path& path);
+
+}  // namespace raycube::host
