@@ -18,6 +18,7 @@
 #include "host/machine.h"
 #include "host/machine_report.h"
 #include "host/sequential_renderers.h"
+#include "host/scaling.h"
 #include "host/simulated_report.h"
 #include "host/stats_report.h"
 #include "host/tradeoff.h"
@@ -140,8 +141,7 @@ void writeOutputs(const core::Image& image, const core::Scene& scene, const std:
   }
 }
 
-int runRender(const RenderCommand& cmd) {
-  const core::Scene scene = loadScene(cmd);
+RenderSettings renderSettingsOf(const RenderCommand& cmd, const core::Scene& scene) {
   RenderSettings settings;
   settings.width = scene.camera.width;
   settings.height = scene.camera.height;
@@ -154,6 +154,12 @@ int runRender(const RenderCommand& cmd) {
   settings.precision = kPrecisions.at(cmd.precision);
   settings.threads = cmd.threads;
   settings.progress = !cmd.quiet;
+  return settings;
+}
+
+int runRender(const RenderCommand& cmd) {
+  const core::Scene scene = loadScene(cmd);
+  const RenderSettings settings = renderSettingsOf(cmd, scene);
   std::optional<MachineReport> report;
   const RenderResult result = render(scene, cmd, settings, report);
   writeOutputs(result.image, scene, cmd.output);
@@ -182,8 +188,8 @@ int runRender(const RenderCommand& cmd) {
   return result.counters.nonFinite > 0 ? 3 : 0;
 }
 
-void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
-  CLI::App* render = app.add_subcommand("render", "Render a scene to OpenEXR and PNG");
+// The options of a render; a scaling study takes the same, but a list of processor counts for --procs.
+void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render->add_option("scene", cmd.scenePath, "NFF scene file (default: the built-in balls scene)")
       ->check(CLI::ExistingFile);
   render->add_option("--balls", cmd.balls, "Built-in SPD balls (sphereflake) scene of this size (1-6)")
@@ -210,7 +216,7 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       ->check(CLI::Range(0, 1024));
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
       ->transform(CLI::IsMember(keysOf(kSamplings), CLI::ignore_case));
-  render->add_option("--procs", cmd.procs,
+  if (procsAsGrid) render->add_option("--procs", cmd.procs,
                      "Logical processors as RxC (rows x columns); with --balance bsp only R*C counts");
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
@@ -250,6 +256,51 @@ void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
       "Machine: figure 15, estimated against actual rays per processor, as a bar chart (.png)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
   render->get_option("--balls")->excludes("scene");
+}
+
+void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
+  addRenderOptions(app.add_subcommand("render", "Render a scene to OpenEXR and PNG"), cmd, true);
+}
+
+struct ScalingCommand {
+  RenderCommand render;
+  std::vector<int> processors{1, 4, 16, 32};
+  std::string csv;
+  double fit = 0;
+};
+
+// Table 2: the same render on 1, 4, 16, 32 ... processors in simulated time.
+int runScaling(ScalingCommand& cmd) {
+  if (cmd.render.emulate.empty() && cmd.render.platformPath.empty())
+    throw std::invalid_argument("scaling needs --emulate or --platform: wall time on this host cannot show it");
+  const core::Scene scene = loadScene(cmd.render);
+  RenderSettings settings = renderSettingsOf(cmd.render, scene);
+  settings.progress = false;
+  MachineSettings machine = cmd.render.machine;
+  machine.lightRays = kLightRays.at(cmd.render.lightRays);
+  machine.balance = kBalances.at(cmd.render.balance);
+  machine.loadMetric = kLoadMetrics.at(cmd.render.loadMetric);
+  machine.emulate = emulatedPlatform(cmd.render);
+  const std::vector<ScalingPoint> points = scalingStudy(scene, settings, machine, cmd.processors);
+  std::cout << scalingTable(points, scene, settings);
+  if (cmd.fit > 0) {
+    if (points.front().processors != 1) throw std::invalid_argument("--fit needs 1 among --procs");
+    std::cout << fmt::format("fit: a node speed of {:.6g} flop-equivalents/s makes one processor take {} s\n",
+                             machine.emulate->nodeSpeed * points.front().makespan / cmd.fit, cmd.fit);
+  }
+  if (!cmd.csv.empty()) writeScalingCsv(points, cmd.csv);
+  return 0;
+}
+
+void addScalingCommand(CLI::App& app, ScalingCommand& cmd) {
+  CLI::App* scaling = app.add_subcommand("scaling", "Table 2: simulated time, speedup and efficiency against processors");
+  addRenderOptions(scaling, cmd.render, false);
+  scaling->add_option("--procs", cmd.processors, "Processor counts, e.g. 1,4,16,32")
+      ->delimiter(',')
+      ->check(CLI::Range(1, kMaxProcessorsPerSide * kMaxProcessorsPerSide));
+  scaling->add_option("--csv", cmd.csv, "The table as CSV");
+  scaling->add_option("--fit", cmd.fit, "Print the node speed that makes one processor take this many seconds")
+      ->check(CLI::PositiveNumber);
 }
 
 struct TradeoffCommand {
@@ -341,6 +392,8 @@ int runCommandLine(int argc, char** argv) {
   addCompareCommand(app, compareCmd);
   TradeoffCommand tradeoffCmd;
   addTradeoffCommand(app, tradeoffCmd);
+  ScalingCommand scalingCmd;
+  addScalingCommand(app, scalingCmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -355,6 +408,7 @@ int runCommandLine(int argc, char** argv) {
     if (app.got_subcommand("render")) return runRender(renderCmd);
     if (app.got_subcommand("compare")) return runCompare(compareCmd);
     if (app.got_subcommand("tradeoff")) return runTradeoff(tradeoffCmd);
+    if (app.got_subcommand("scaling")) return runScaling(scalingCmd);
   } catch (const CLI::ValidationError& e) {
     std::cerr << "raycube: " << e.what() << '\n';
     return 2;
