@@ -20,9 +20,13 @@
 #include <ctime>
 #include <memory>
 #include <mutex>
+#include <span>
+#include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
+#include "node/ray_message.h"
 #include "queues/host_channel.h"
 #include "queues/spsc_queue.h"
 #include "queues/wait.h"
@@ -34,49 +38,61 @@ struct SmallMessage {
   std::uint64_t value = 0;
 };
 
-// About what a ray message carries: origin, direction, weight, pixel, depth, kind (~100 bytes).
-struct RayMessage {
-  std::uint64_t value = 0;
-  std::array<float, 23> payload{};
-};
+// The messages the machine's FIFOs carry (host/shared_memory_transport.h): a ray in double (128 bytes) or
+// float (80 bytes). The sequence number rides in the ray's sample index.
+using DoubleRay = node::BasicRayMessage<double>;
+using FloatRay = node::BasicRayMessage<float>;
+static_assert(sizeof(DoubleRay) == 128 && sizeof(FloatRay) == 80);
 
 template <class T>
 T makeMessage(std::uint64_t i) {
   T m{};
-  m.value = i;
+  if constexpr (std::is_same_v<T, SmallMessage>)
+    m.value = i;
+  else
+    m.ray.sample = static_cast<std::uint32_t>(i);
   return m;
+}
+
+template <class T>
+std::uint64_t sequenceOf(const T& m) {
+  if constexpr (std::is_same_v<T, SmallMessage>)
+    return m.value;
+  else
+    return m.ray.sample;
 }
 
 // ---- The queues under test, behind one interface: tryPush/tryPop (polling) and push/pop (blocking).
 
-template <class T>
+// raycube's ring with or without doorbells and accounting; the machine's FIFO has both
+// (host/shared_memory_transport.h).
+template <class T, Accounting kAccounting, bool kBells>
 class Raycube {
  public:
   explicit Raycube(std::size_t capacity)
-      : queue_({.capacity = capacity, .consumerBell = &consumerBell_, .producerBell = &producerBell_}) {}
+      : queue_({.capacity = capacity,
+                .consumerBell = kBells ? &consumerBell_ : nullptr,
+                .producerBell = kBells ? &producerBell_ : nullptr}) {}
   bool tryPush(const T& m) { return queue_.tryPush(m); }
   bool tryPop(T& m) { return queue_.tryPop(m); }
+  std::size_t tryPushN(std::span<const T> m) { return queue_.tryPushN(m); }
+  std::size_t tryPopN(std::span<T> out) { return queue_.tryPopN(out); }
   void push(const T& m) { queue_.push(m); }
   T pop() { return queue_.pop(); }
 
  private:
   Doorbell consumerBell_, producerBell_;
-  SpscQueue<T> queue_;
+  SpscQueue<T, kAccounting> queue_;
 };
 
-// The bare ring, without doorbells: what busy-polling costs when nobody ever sleeps.
+// The bare ring: what busy-polling costs when nobody ever sleeps.
 template <class T>
-class RaycubeNoBell {
- public:
-  explicit RaycubeNoBell(std::size_t capacity) : queue_(capacity) {}
-  bool tryPush(const T& m) { return queue_.tryPush(m); }
-  bool tryPop(T& m) { return queue_.tryPop(m); }
-  void push(const T& m) { queue_.push(m); }
-  T pop() { return queue_.pop(); }
-
- private:
-  SpscQueue<T> queue_;
-};
+using RaycubeBare = Raycube<T, Accounting::kOff, false>;
+template <class T>
+using RaycubeBells = Raycube<T, Accounting::kOff, true>;
+// The machine's FIFO: doorbells and saturation accounting.
+template <class T>
+using RaycubeMachine = Raycube<T, Accounting::kOn, true>;
 
 template <class T>
 class Tbb {
@@ -213,7 +229,7 @@ void Throughput(benchmark::State& state) {
       Poll poll;
       for (std::uint64_t i = 0; i < messages; ++i) {
         while (!queue.tryPop(m)) poll();
-        sum += m.value;
+        sum += sequenceOf(m);
       }
     });
     Poll poll;
@@ -229,15 +245,14 @@ void Throughput(benchmark::State& state) {
 }
 
 // The node's way of moving rays: tryPushN/tryPopN by blocks of 16, one synchronisation per block.
-template <class T>
+template <template <class> class Queue, class T>
 void ThroughputBatched(benchmark::State& state) {
   const auto capacity = static_cast<std::size_t>(state.range(0));
   const std::uint64_t messages = messagesFor(capacity);
   constexpr std::size_t kBatch = 16;
   pinTo(0);
   for (auto _ : state) {
-    Doorbell consumerBell, producerBell;
-    SpscQueue<T> queue({.capacity = capacity, .consumerBell = &consumerBell, .producerBell = &producerBell});
+    Queue<T> queue(capacity);
     std::uint64_t sum = 0;
     std::thread consumer([&] {
       pinTo(1);
@@ -246,7 +261,7 @@ void ThroughputBatched(benchmark::State& state) {
       for (std::uint64_t received = 0; received < messages;) {
         const std::size_t n = queue.tryPopN(out);
         if (n == 0) poll();
-        for (std::size_t i = 0; i < n; ++i) sum += out[i].value;
+        for (std::size_t i = 0; i < n; ++i) sum += sequenceOf(out[i]);
         received += n;
       }
     });
@@ -275,14 +290,28 @@ void capacities(benchmark::internal::Benchmark* b) {
   b->Iterations(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 
-BENCHMARK(Throughput<RaycubeNoBell, SmallMessage>)->Name("Throughput/8B/raycube")->Apply(capacities);
-BENCHMARK(Throughput<RaycubeNoBell, RayMessage>)->Name("Throughput/ray/raycube")->Apply(capacities);
-BENCHMARK(Throughput<Raycube, RayMessage>)->Name("Throughput/ray/raycube+doorbells")->Apply(capacities);
-BENCHMARK(ThroughputBatched<RayMessage>)->Name("Throughput/ray/raycube+doorbells,batch16")->Apply(capacities);
+BENCHMARK(Throughput<RaycubeBare, SmallMessage>)->Name("Throughput/8B/raycube")->Apply(capacities);
 BENCHMARK(Throughput<Tbb, SmallMessage>)->Name("Throughput/8B/tbb")->Apply(capacities);
-BENCHMARK(Throughput<Tbb, RayMessage>)->Name("Throughput/ray/tbb")->Apply(capacities);
 BENCHMARK(Throughput<MutexCv, SmallMessage>)->Name("Throughput/8B/mutex+cv")->Apply(capacities);
-BENCHMARK(Throughput<MutexCv, RayMessage>)->Name("Throughput/ray/mutex+cv")->Apply(capacities);
+
+// Per message type: the bare ring, with doorbells, with doorbells and accounting (the machine's FIFO), one
+// message at a time and in batches of 16 (the node sends one ray, or its whole waiting list).
+template <class T>
+bool registerRayThroughput(const std::string& type) {
+  const auto add = [&](const std::string& queue, auto function) {
+    benchmark::RegisterBenchmark(("Throughput/" + type + "/" + queue).c_str(), function)->Apply(capacities);
+  };
+  add("raycube", Throughput<RaycubeBare, T>);
+  add("raycube+doorbells", Throughput<RaycubeBells, T>);
+  add("raycube+doorbells+accounting", Throughput<RaycubeMachine, T>);
+  add("raycube+doorbells,batch16", ThroughputBatched<RaycubeBells, T>);
+  add("raycube+doorbells+accounting,batch16", ThroughputBatched<RaycubeMachine, T>);
+  return true;
+}
+const bool kDoubleRayRegistered = registerRayThroughput<DoubleRay>("ray128B");
+const bool kFloatRayRegistered = registerRayThroughput<FloatRay>("ray80B");
+BENCHMARK(Throughput<Tbb, DoubleRay>)->Name("Throughput/ray128B/tbb")->Apply(capacities);
+BENCHMARK(Throughput<MutexCv, DoubleRay>)->Name("Throughput/ray128B/mutex+cv")->Apply(capacities);
 
 // ---- Saturation: the consumer is `ratio` times slower than the producer.
 
@@ -298,7 +327,7 @@ void Saturation(benchmark::State& state) {
   pinTo(0);
   for (auto _ : state) {
     Doorbell consumerBell, producerBell;
-    SpscQueue<RayMessage, Accounting::kOn> queue(
+    SpscQueue<DoubleRay, Accounting::kOn> queue(
         {.capacity = capacity, .consumerBell = &consumerBell, .producerBell = &producerBell});
     std::thread consumer([&] {
       pinTo(1);
@@ -310,14 +339,14 @@ void Saturation(benchmark::State& state) {
     const auto start = std::chrono::steady_clock::now();
     for (std::uint64_t i = 0; i < kMessages; ++i) {
       work(kProducerWork);
-      queue.push(makeMessage<RayMessage>(i));
+      queue.push(makeMessage<DoubleRay>(i));
     }
     producerSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     consumer.join();
     total += queue.stats();
   }
   unpin();
-  setMessageCounters(state, kMessages * state.iterations(), sizeof(RayMessage));
+  setMessageCounters(state, kMessages * state.iterations(), sizeof(DoubleRay));
   state.counters["blocked_frac"] = 1e-9 * static_cast<double>(total.nanosBlockedFull) / producerSeconds;
   state.counters["mean_occupancy"] = total.meanOccupancy();
   state.counters["occupancy_frac"] = total.meanOccupancy() / static_cast<double>(capacity);
@@ -341,17 +370,17 @@ void Oversubscribed(benchmark::State& state) {
   const std::uint64_t perPair = kTotalMessages / pairs;
   double cpuSeconds = 0;
   for (auto _ : state) {
-    std::vector<std::unique_ptr<Queue<RayMessage>>> queues;
-    for (std::size_t p = 0; p < pairs; ++p) queues.push_back(std::make_unique<Queue<RayMessage>>(128));
+    std::vector<std::unique_ptr<Queue<DoubleRay>>> queues;
+    for (std::size_t p = 0; p < pairs; ++p) queues.push_back(std::make_unique<Queue<DoubleRay>>(128));
     const double cpuStart = processCpuSeconds();
     std::vector<std::thread> threads;
     for (std::size_t p = 0; p < pairs; ++p) {
       threads.emplace_back([&, p] {
-        for (std::uint64_t i = 0; i < perPair; ++i) queues[p]->push(makeMessage<RayMessage>(i));
+        for (std::uint64_t i = 0; i < perPair; ++i) queues[p]->push(makeMessage<DoubleRay>(i));
       });
       threads.emplace_back([&, p] {
         std::uint64_t sum = 0;
-        for (std::uint64_t i = 0; i < perPair; ++i) sum += queues[p]->pop().value;
+        for (std::uint64_t i = 0; i < perPair; ++i) sum += sequenceOf(queues[p]->pop());
         benchmark::DoNotOptimize(sum);
       });
     }
@@ -359,7 +388,7 @@ void Oversubscribed(benchmark::State& state) {
     cpuSeconds += processCpuSeconds() - cpuStart;
   }
   const std::uint64_t messages = perPair * pairs * state.iterations();
-  setMessageCounters(state, messages, sizeof(RayMessage));
+  setMessageCounters(state, messages, sizeof(DoubleRay));
   state.counters["cpu_s_per_Mmsg"] = cpuSeconds / (static_cast<double>(messages) * 1e-6);
 }
 
@@ -367,8 +396,8 @@ void pairCounts(benchmark::internal::Benchmark* b) {
   b->ArgName("pairs")->Arg(1)->Arg(8)->Arg(32)->Iterations(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 
-BENCHMARK(Oversubscribed<Raycube>)->Name("Oversubscribed/raycube")->Apply(pairCounts);
-BENCHMARK(Oversubscribed<RaycubeNoBell>)->Name("Oversubscribed/raycube,no-sleep")->Apply(pairCounts);
+BENCHMARK(Oversubscribed<RaycubeBells>)->Name("Oversubscribed/raycube")->Apply(pairCounts);
+BENCHMARK(Oversubscribed<RaycubeBare>)->Name("Oversubscribed/raycube,no-sleep")->Apply(pairCounts);
 BENCHMARK(Oversubscribed<Tbb>)->Name("Oversubscribed/tbb")->Apply(pairCounts);
 BENCHMARK(Oversubscribed<MutexCv>)->Name("Oversubscribed/mutex+cv")->Apply(pairCounts);
 

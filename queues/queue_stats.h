@@ -19,9 +19,12 @@ struct QueueStats {
   std::uint64_t emptyPops = 0;          // try-pop calls, or blocking episodes, that found the queue empty
   std::uint64_t nanosBlockedFull = 0;   // time spent waiting in push/pushN
   std::uint64_t nanosBlockedEmpty = 0;  // time spent waiting in pop/popN
-  std::uint64_t highWater = 0;          // largest occupancy seen after a push
-  std::uint64_t occupancySamples = 0;   // one per successful push call
-  std::uint64_t occupancySum = 0;       // sum of the sampled occupancies
+  // Occupancy is read where the producer reads the consumer's index anyway, or at a sample: every push
+  // call up to capacity 8, then every capacity/8 messages, at most 64 (occupancySamplePeriod in
+  // spsc_queue.h), so that accounting keeps the cached-index trick.
+  std::uint64_t highWater = 0;         // largest occupancy seen after a push; a refused push sees it full
+  std::uint64_t occupancySamples = 0;  // samples taken
+  std::uint64_t occupancySum = 0;      // sum of the sampled occupancies
   // Bucket b counts samples with occupancy/capacity in [b/16, (b+1)/16); a full queue lands in the last.
   std::array<std::uint64_t, kOccupancyBuckets> occupancyHistogram{};
 

@@ -22,8 +22,16 @@ namespace raycube::queues {
 // Priol & Bouatouch 3.7: each face of a processor buffers 128 rays.
 inline constexpr std::size_t kPaperFifoCapacity = 128;
 
-// Compile-time, so that a queue without accounting carries no counters and no branches.
+// Compile-time, so that a queue without accounting carries no counters and no branches. With accounting on,
+// the queue keeps the cached-index trick: the producer reads the consumer's index only when its cached copy
+// says the queue is full, and at occupancy samples (occupancySamplePeriod).
 enum class Accounting { kOff, kOn };
+
+// Messages between two occupancy samples: every push call up to capacity 8, then one sample per eighth of the
+// capacity, at most every 64 messages. Each sample costs the producer one read of the consumer's cache line.
+inline std::size_t occupancySamplePeriod(std::size_t capacity) {
+  return std::clamp<std::size_t>(std::bit_ceil(capacity) / 8, 1, 64);
+}
 
 struct SpscOptions {
   std::size_t capacity = kPaperFifoCapacity;  // any value >= 1
@@ -52,6 +60,7 @@ class alignas(kCacheLine) SpscQueue {
   explicit SpscQueue(const SpscOptions& options)
       : capacity_(checkedCapacity(options.capacity)),
         mask_(std::bit_ceil(options.capacity) - 1),
+        firstIndex_(options.firstIndex),
         slots_(std::make_unique<T[]>(mask_ + 1)),
         consumerBell_(options.consumerBell),
         producerBell_(options.producerBell),
@@ -149,7 +158,8 @@ class alignas(kCacheLine) SpscQueue {
     QueueStats s;
     s.capacity = capacity_;
     if constexpr (kCounting) {
-      s.pushed = read(producer_.pushed);
+      // The indices count every message since construction: no per-message counters.
+      s.pushed = tail_.load(std::memory_order_acquire) - firstIndex_;
       s.refusedPushes = read(producer_.refusedPushes);
       s.nanosBlockedFull = read(producer_.nanosBlockedFull);
       s.highWater = read(producer_.highWater);
@@ -157,7 +167,7 @@ class alignas(kCacheLine) SpscQueue {
       s.occupancySum = read(producer_.occupancySum);
       for (std::size_t b = 0; b < kOccupancyBuckets; ++b)
         s.occupancyHistogram[b] = read(producer_.histogram[b]);
-      s.popped = read(consumer_.popped);
+      s.popped = head_.load(std::memory_order_acquire) - firstIndex_;
       s.emptyPops = read(consumer_.emptyPops);
       s.nanosBlockedEmpty = read(consumer_.nanosBlockedEmpty);
     }
@@ -169,27 +179,26 @@ class alignas(kCacheLine) SpscQueue {
   using Counter = std::atomic<std::uint64_t>;  // one writer; atomic only so that stats() may read it live
 
   struct ProducerCounters {
-    Counter pushed{0}, refusedPushes{0}, nanosBlockedFull{0}, highWater{0}, occupancySamples{0},
-        occupancySum{0};
+    Counter refusedPushes{0}, nanosBlockedFull{0}, highWater{0}, occupancySamples{0}, occupancySum{0};
     std::array<Counter, kOccupancyBuckets> histogram{};
+    std::uint64_t untilSample = 0;  // messages to push before the next occupancy sample
   };
   struct ConsumerCounters {
-    Counter popped{0}, emptyPops{0}, nanosBlockedEmpty{0};
+    Counter emptyPops{0}, nanosBlockedEmpty{0};
   };
   struct NoCounters {};
 
   std::size_t pushSome(std::span<const T> messages) {
     const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
-    // With accounting on, always refresh: the occupancy sample must not be a stale upper bound.
-    if (kCounting || capacity_ - (tail - headCache_) < messages.size()) {
-      headCache_ = head_.load(std::memory_order_acquire);
-    }
+    const bool refreshed = capacity_ - (tail - headCache_) < messages.size();
+    if (refreshed) headCache_ = head_.load(std::memory_order_acquire);
     const std::size_t n = std::min<std::size_t>(messages.size(), capacity_ - (tail - headCache_));
-    if (n == 0) return 0;
-    for (std::size_t i = 0; i < n; ++i) slots_[(tail + i) & mask_] = messages[i];
-    tail_.store(tail + n, std::memory_order_release);
-    if (consumerBell_ != nullptr) consumerBell_->ring();
-    if constexpr (kCounting) recordPush(n, tail + n - headCache_);
+    if (n > 0) {
+      for (std::size_t i = 0; i < n; ++i) slots_[(tail + i) & mask_] = messages[i];
+      tail_.store(tail + n, std::memory_order_release);
+      if (consumerBell_ != nullptr) consumerBell_->ring();
+    }
+    if constexpr (kCounting) recordPush(tail + n, n, refreshed);
     return n;
   }
 
@@ -201,17 +210,27 @@ class alignas(kCacheLine) SpscQueue {
     for (std::size_t i = 0; i < n; ++i) out[i] = slots_[(head + i) & mask_];
     head_.store(head + n, std::memory_order_release);
     if (producerBell_ != nullptr) producerBell_->ring();
-    if constexpr (kCounting) bump(consumer_.popped, n);
     return n;
   }
 
-  void recordPush(std::size_t n, std::uint64_t occupancy) {
-    bump(producer_.pushed, n);
+  // Occupancy after a push, read off the cached index where it is fresh: after a refresh (the queue looked
+  // full), and at samples, which refresh it. A busy queue thus costs one more read of the consumer's index
+  // per sample period than without accounting, and a refused push always sees the queue full.
+  void recordPush(std::uint64_t tail, std::size_t n, bool refreshed) {
+    const bool sample = n > 0 && n >= producer_.untilSample;
+    producer_.untilSample = sample ? occupancySamplePeriod(capacity_) : producer_.untilSample - n;
+    if (sample && !refreshed) {
+      headCache_ = head_.load(std::memory_order_acquire);
+      refreshed = true;
+    }
+    if (!refreshed) return;
+    const std::uint64_t occupancy = tail - headCache_;
+    if (occupancy > read(producer_.highWater))
+      producer_.highWater.store(occupancy, std::memory_order_relaxed);
+    if (!sample) return;
     bump(producer_.occupancySamples);
     bump(producer_.occupancySum, occupancy);
     bump(producer_.histogram[occupancyBucket(occupancy, capacity_)]);
-    if (occupancy > read(producer_.highWater))
-      producer_.highWater.store(occupancy, std::memory_order_relaxed);
   }
 
   static void bump(Counter& counter, std::uint64_t by = 1) {
@@ -236,6 +255,7 @@ class alignas(kCacheLine) SpscQueue {
   // Read by both sides, written by neither after construction.
   const std::size_t capacity_;
   const std::size_t mask_;
+  const std::uint64_t firstIndex_;
   const std::unique_ptr<T[]> slots_;
   Doorbell* const consumerBell_;
   Doorbell* const producerBell_;

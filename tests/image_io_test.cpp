@@ -215,7 +215,7 @@ TEST_F(ImageIoTest, WritingAMisshapenImageThrows) {
 }
 
 TEST(ReferenceImageTest, PovRayReferenceReadsAs512By512) {
-  const Image reference = readPng(fs::path(RAYCUBE_SHARED_DIR) / "reference" / "balls2_512_povray.png");
+  const Image reference = readPng(fs::path(RAYCUBE_SOURCE_DIR) / "tests" / "data" / "balls2_512_povray.png");
   EXPECT_EQ(reference.width, 512);
   EXPECT_EQ(reference.height, 512);
   ASSERT_EQ(reference.pixels.size(), 512u * 512u);

@@ -199,6 +199,32 @@ TEST(SpscQueue, AccountingCountsRefusalsHighWaterAndOccupancy) {
   EXPECT_EQ(stats.occupancyHistogram[kOccupancyBuckets - 1], 1u);
 }
 
+// Accounting keeps the cached-index trick: a larger queue samples its occupancy every capacity/8 messages
+// rather than at every push, counts messages by its indices (here across the wrap at 2^64), and a refused
+// push still records the queue full.
+TEST(SpscQueue, AccountingSamplesOccupancyEveryEighthOfTheCapacity) {
+  EXPECT_EQ(occupancySamplePeriod(1), 1u);
+  EXPECT_EQ(occupancySamplePeriod(8), 1u);
+  EXPECT_EQ(occupancySamplePeriod(100), 16u);
+  EXPECT_EQ(occupancySamplePeriod(4096), 64u);
+  SpscQueue<int, Accounting::kOn> queue(SpscOptions{.capacity = 128, .firstIndex = ~std::uint64_t{0} - 60});
+  for (int i = 0; i < 128; ++i) ASSERT_TRUE(queue.tryPush(i));
+  EXPECT_FALSE(queue.tryPush(0));
+  int value = 0;
+  for (int i = 0; i < 100; ++i) ASSERT_TRUE(queue.tryPop(value));
+
+  const QueueStats stats = queue.stats();
+  EXPECT_EQ(stats.pushed, 128u);
+  EXPECT_EQ(stats.popped, 100u);
+  EXPECT_EQ(stats.refusedPushes, 1u);
+  EXPECT_EQ(stats.highWater, 128u);
+  // Samples after pushes 1, 17, 33, ..., 113.
+  EXPECT_EQ(stats.occupancySamples, 8u);
+  EXPECT_EQ(stats.occupancySum, 8u + 16u * (0 + 1 + 2 + 3 + 4 + 5 + 6 + 7));
+  EXPECT_EQ(stats.occupancyHistogram[0], 1u);   // 1 of 128
+  EXPECT_EQ(stats.occupancyHistogram[14], 1u);  // 113 of 128
+}
+
 TEST(SpscQueue, AccountingTimesBlockingOnFullAndEmpty) {
   SpscQueue<int, Accounting::kOn> queue(1);
   queue.push(1);
