@@ -73,7 +73,6 @@ class HostChannel {
     }
   }
 
-  std::size_t senders() const { return queues_.size(); }
   Sender sender(std::size_t node) { return Sender(queues_.at(node).get()); }
 
   // ---- Host side: one thread only.

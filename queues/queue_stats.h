@@ -3,7 +3,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <string>
 
 namespace raycube::queues {
 
@@ -33,7 +32,6 @@ struct QueueStats {
   }
 
   QueueStats& operator+=(const QueueStats& other);
-  std::string toString() const;
 };
 
 inline std::size_t occupancyBucket(std::uint64_t occupancy, std::uint64_t capacity) {

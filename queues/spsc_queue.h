@@ -52,8 +52,6 @@ class alignas(kCacheLine) SpscQueue {
   static constexpr bool kCounting = kAccounting == Accounting::kOn;
 
  public:
-  using value_type = T;
-
   explicit SpscQueue(std::size_t capacity = kPaperFifoCapacity)
       : SpscQueue(SpscOptions{.capacity = capacity}) {}
 

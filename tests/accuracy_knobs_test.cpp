@@ -18,15 +18,6 @@ RenderSettings knobs(int side, int spp, double minWeight) {
   return s;
 }
 
-MachineSettings grid(int rows, int columns, std::size_t capacity) {
-  MachineSettings m;
-  m.rows = rows;
-  m.columns = columns;
-  m.balance = Balance::Uniform;
-  m.queueCapacity = capacity;
-  return m;
-}
-
 void expectEveryModeMatches(const core::Scene& scene, const RenderSettings& settings,
                             const RenderResult& reference) {
   RenderSettings threads = settings;
@@ -38,7 +29,7 @@ void expectEveryModeMatches(const core::Scene& scene, const RenderSettings& sett
   MachineSettings bsp;
   bsp.rows = 1;
   bsp.columns = 5;
-  for (const MachineSettings& m : {grid(3, 5, 1), grid(4, 4, 128), bsp}) {
+  for (const MachineSettings& m : {uniformGrid(3, 5, 1), uniformGrid(4, 4, 128), bsp}) {
     MachineReport report;
     const RenderResult result = renderMachineWatched(scene, settings, m, report, "knobs");
     EXPECT_TRUE(core::bitIdentical(result.image, reference.image)) << m.rows << "x" << m.columns;

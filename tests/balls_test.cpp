@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/nff_reader.h"
+#include "test_support.h"
 
 namespace raycube::core {
 namespace {
@@ -25,8 +26,7 @@ class BallsMatchesSpd : public testing::TestWithParam<int> {};
 TEST_P(BallsMatchesSpd, ElementByElement) {
   const int size = GetParam();
   const Scene generated = makeBalls(size);
-  const Scene file = readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" /
-                             ("balls" + std::to_string(size) + ".nff"));
+  const Scene file = readNff(testing_support::scenePath("balls" + std::to_string(size) + ".nff"));
   EXPECT_EQ(generated.name, file.name);
 
   expectNear(generated.background, file.background, "background");

@@ -17,11 +17,13 @@
 #include "core/balls.h"
 #include "core/image.h"
 #include "host/sequential_renderers.h"
+#include "test_support.h"
 
 namespace raycube::host {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::slurp;
 
 std::string binaryPath() {
   if (const char* path = std::getenv("RAYCUBE_BINARY"); path != nullptr && *path != '\0') return path;
@@ -32,12 +34,6 @@ std::string binaryPath() {
 #endif
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::string quoted(const std::string& s) {
   std::string q = "'";

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/image.h"
+#include "test_support.h"
 
 namespace raycube::core {
 namespace {
@@ -215,7 +216,7 @@ TEST_F(ImageIoTest, WritingAMisshapenImageThrows) {
 }
 
 TEST(ReferenceImageTest, PovRayReferenceReadsAs512By512) {
-  const Image reference = readPng(fs::path(RAYCUBE_SOURCE_DIR) / "tests" / "data" / "balls2_512_povray.png");
+  const Image reference = readPng(testing_support::sourcePath("tests/data/balls2_512_povray.png"));
   EXPECT_EQ(reference.width, 512);
   EXPECT_EQ(reference.height, 512);
   ASSERT_EQ(reference.pixels.size(), 512u * 512u);

@@ -44,13 +44,7 @@ std::string gridName(Grid g) {
 // the walk across regions. Light-ray deletion (cone, pyramid) has its own tests below.
 MachineSettings machineFor(Grid grid, std::size_t capacity,
                            node::LightRayMode lightRays = node::LightRayMode::Messages) {
-  MachineSettings m;
-  m.rows = grid.rows;
-  m.columns = grid.columns;
-  m.queueCapacity = capacity;
-  m.lightRays = lightRays;
-  m.balance = Balance::Uniform;  // the R x C grid of 3.1; the BSP has its own tests (load_distribution_test)
-  return m;
+  return uniformGrid(grid.rows, grid.columns, capacity, lightRays);
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -86,8 +80,7 @@ TEST(MachineTest, LightConesAndPyramidsDeleteLightRayMessagesAndKeepTheImage) {
   for (const char* name : {"balls2", "gears1", "teapot2"}) {
     const core::Scene scene = std::string(name) == "balls2"
                                   ? core::makeBalls(2)
-                                  : core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" /
-                                                  (std::string(name) + ".nff"));
+                                  : core::readNff(testing_support::scenePath(std::string(name) + ".nff"));
     const int side = sanitized() ? 16 : 32;
     const RenderSettings settings = settingsFor(side);
     const RenderResult reference = renderReference(scene, settings);
@@ -119,7 +112,7 @@ TEST(MachineTest, LightConesAndPyramidsDeleteLightRayMessagesAndKeepTheImage) {
 // there are none, and the image does not change.
 TEST(MachineTest, LightAmongTheObjectsSendsLightRaysOnlyAsMessages) {
   const core::Scene scene =
-      core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" / "lamp_among_balls.nff");
+      core::readNff(testing_support::scenePath("lamp_among_balls.nff"));
   const RenderSettings settings = settingsFor(sanitized() ? 16 : 48);
   const RenderResult reference = renderReference(scene, settings);
   std::uint64_t lightMessages[2] = {};
@@ -181,7 +174,7 @@ class MachineSceneTest : public testing::TestWithParam<SceneCase> {};
 // All grids at capacity 8, plus the tightest FIFOs on the largest grid.
 TEST_P(MachineSceneTest, MatchesReference) {
   const SceneCase& c = GetParam();
-  const core::Scene scene = core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" / c.file);
+  const core::Scene scene = core::readNff(testing_support::scenePath(c.file));
   const int side = sanitized() ? 16 : c.side;
   const RenderSettings settings = settingsFor(side);
   const RenderResult reference = renderReference(scene, settings);
@@ -213,7 +206,7 @@ std::vector<SceneCase> sceneCases() {
                                          {"teapot2.nff", 32}, {"tree1.nff", 40}};
   std::vector<SceneCase> cases;
   for (const auto& entry :
-       std::filesystem::directory_iterator(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes"))
+       std::filesystem::directory_iterator(testing_support::sourcePath("scenes")))
     if (entry.path().extension() == ".nff") {
       const std::string file = entry.path().filename().string();
       const auto side = sides.find(file);

@@ -1,13 +1,10 @@
 #pragma once
-// Shared by the machine's test programs: sanitizer-aware sizes, a render that cannot hang CI, and everything
-// a machine run must agree on with the reference renderer.
+// Shared by the test programs that render: settings builders, a machine run that cannot hang CI, what is
+// wrong with an image, and everything a machine run must agree on with the reference renderer.
 #include <array>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
-#include <future>
+#include <cmath>
+#include <cstddef>
 #include <string>
-#include <thread>
 
 #include "core/image.h"
 #include "host/machine.h"
@@ -15,38 +12,51 @@
 
 namespace raycube::host::testing_support {
 
-using raycube::testing_support::sanitized;
+using namespace raycube::testing_support;
 
-// A run that has not finished by then is deadlocked or has lost its termination: fail loudly, not hang CI.
-inline std::chrono::seconds watchdogLimit() {
-  return std::chrono::seconds(sanitized() ? 600 : 120);
-}
-
-inline RenderSettings settingsFor(int side, core::Sampling sampling = core::Sampling::Centers) {
+// A side x side render without progress output; threads 0 lets the image-parallel renderer choose.
+inline RenderSettings settingsFor(int side, core::Sampling sampling = core::Sampling::Centers, int threads = 0) {
   RenderSettings s;
   s.width = side;
   s.height = side;
   s.sampling = sampling;
+  s.threads = threads;
   s.progress = false;
   return s;
 }
 
-// renderMachine on a worker thread; std::abort() (after saying why) if it does not finish in time.
+// The R x C grid of 3.1 (the BSP has its own tests, load_distribution_test).
+inline MachineSettings uniformGrid(int rows, int columns, std::size_t capacity,
+                                   node::LightRayMode lightRays = MachineSettings{}.lightRays) {
+  MachineSettings m;
+  m.rows = rows;
+  m.columns = columns;
+  m.balance = Balance::Uniform;
+  m.queueCapacity = capacity;
+  m.lightRays = lightRays;
+  return m;
+}
+
+// renderMachine on a worker thread, under the watchdog.
 inline RenderResult renderMachineWatched(const core::Scene& scene, const RenderSettings& settings,
                                          const MachineSettings& machine, MachineReport& report,
                                          const std::string& label) {
-  std::packaged_task<RenderResult()> task([&] { return renderMachine(scene, settings, machine, &report); });
-  std::future<RenderResult> done = task.get_future();
-  std::thread worker(std::move(task));
-  if (done.wait_for(watchdogLimit()) != std::future_status::ready) {
-    std::fprintf(stderr,
-                 "WATCHDOG: %s did not finish within %lld s (deadlock or lost termination); aborting\n",
-                 label.c_str(), (long long)watchdogLimit().count());
-    std::fflush(stderr);
-    std::abort();
-  }
-  worker.join();
-  return done.get();
+  return runWatched(watchdogLimit(), label + " (deadlock or lost termination)",
+                    [&] { return renderMachine(scene, settings, machine, &report); });
+}
+
+// Index of the first pixel with a NaN or infinite channel, or -1.
+inline long firstNonFinitePixel(const core::Image& image) {
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(image.pixels[i][c])) return long(i);
+  return -1;
+}
+
+inline std::size_t nonFinitePixels(const core::Image& image) {
+  std::size_t count = 0;
+  for (const core::Color& c : image.pixels) count += std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) ? 0 : 1;
+  return count;
 }
 
 // Where two images differ: for the messages of the comparisons below.

@@ -1,4 +1,5 @@
 #include "core/nff_reader.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -13,14 +14,10 @@
 namespace raycube::core {
 namespace {
 
-const std::filesystem::path kScenes = std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes";
+using testing_support::slurp;
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+const std::filesystem::path kScenes = testing_support::sourcePath("scenes");
+
 
 // What the file holds, counted from its text alone (first word of each line), independent of the reader.
 std::map<std::string, int> keywordCounts(const std::string& text) {

@@ -29,12 +29,6 @@ RenderSettings inPrecision(RenderSettings settings, core::Precision precision) {
   return settings;
 }
 
-std::size_t nonFinitePixels(const core::Image& image) {
-  std::size_t count = 0;
-  for (const core::Color& c : image.pixels) count += std::isfinite(c.x + c.y + c.z) ? 0 : 1;
-  return count;
-}
-
 double fractionOver(const core::ImageDifference& d, const core::Image& image) {
   return double(d.pixelsOver) / double(image.pixels.size());
 }

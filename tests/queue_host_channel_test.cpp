@@ -23,7 +23,7 @@ struct Contribution {
 TEST(HostChannel, SixtyFourNodesDeliverEveryContributionExactlyOnce) {
   constexpr std::size_t kNodes = 64;
   const std::uint32_t perNode = static_cast<std::uint32_t>(testing::scaled(20'000, 1'000));
-  testing::runWithTimeout(300s, [&] {
+  testing::runWatched(300s, "the host or a node missed its wake-up", [&] {
     std::vector<Doorbell> nodeBells(kNodes);
     std::vector<Doorbell*> bellPointers;
     for (auto& bell : nodeBells) bellPointers.push_back(&bell);

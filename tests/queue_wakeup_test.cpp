@@ -18,7 +18,7 @@ namespace raycube::queues {
 namespace {
 
 using namespace std::chrono_literals;
-using testing::runWithTimeout;
+using testing::runWatched;
 using testing::scaled;
 
 // Straight to the doorbell: every wait in these tests is a real sleep, not a lucky spin.
@@ -61,7 +61,7 @@ class Wakeup : public ::testing::TestWithParam<FenceMode> {};
 
 TEST_P(Wakeup, ConsumerAsleepOnEmptyWakesForOneMessage) {
   const std::uint64_t rounds = scaled(100'000, 100'000);
-  runWithTimeout(kTimeLimit, [&] {
+  runWatched(kTimeLimit, "a waiter missed its wake-up", [&] {
     Doorbell consumerBell(GetParam());
     SpscQueue<std::uint64_t> queue({.capacity = 128, .consumerBell = &consumerBell, .wait = kSleepAtOnce});
     std::thread producer([&] {
@@ -80,7 +80,7 @@ TEST_P(Wakeup, ConsumerAsleepOnEmptyWakesForOneMessage) {
 
 TEST_P(Wakeup, ProducerAsleepOnFullWakesWhenOneSlotFrees) {
   const std::uint64_t rounds = scaled(100'000, 100'000);
-  runWithTimeout(kTimeLimit, [&] {
+  runWatched(kTimeLimit, "a waiter missed its wake-up", [&] {
     Doorbell producerBell(GetParam());
     SpscQueue<std::uint64_t> queue({.capacity = 1, .producerBell = &producerBell, .wait = kSleepAtOnce});
     std::thread consumer([&] {
@@ -99,7 +99,7 @@ TEST_P(Wakeup, ProducerAsleepOnFullWakesWhenOneSlotFrees) {
 
 TEST_P(Wakeup, BothSidesSleepingOnATinyQueue) {
   const std::uint64_t rounds = scaled(100'000, 100'000);
-  runWithTimeout(kTimeLimit, [&] {
+  runWatched(kTimeLimit, "a waiter missed its wake-up", [&] {
     Doorbell consumerBell(GetParam()), producerBell(GetParam());
     SpscQueue<std::uint64_t> queue(
         {.capacity = 2, .consumerBell = &consumerBell, .producerBell = &producerBell, .wait = kSleepAtOnce});
@@ -125,7 +125,7 @@ TEST_P(Wakeup, BothSidesSleepingOnATinyQueue) {
 TEST_P(Wakeup, OneDoorbellServesSeveralQueues) {
   constexpr int kFaces = 4;
   const std::uint64_t perFace = scaled(25'000, 25'000);
-  runWithTimeout(kTimeLimit, [&] {
+  runWatched(kTimeLimit, "a waiter missed its wake-up", [&] {
     Doorbell nodeBell(GetParam());
     std::array<std::unique_ptr<SpscQueue<std::uint64_t>>, kFaces> faces;
     for (auto& face : faces) {
@@ -168,7 +168,7 @@ TEST_P(Wakeup, OneDoorbellServesSeveralQueues) {
 // A doorbell also wakes a waiter for things that are not queues, e.g. a termination token.
 TEST_P(Wakeup, RingingWakesAWaiterOnAnyPredicate) {
   const int rounds = static_cast<int>(scaled(20'000, 2'000));
-  runWithTimeout(kTimeLimit, [&] {
+  runWatched(kTimeLimit, "a waiter missed its wake-up", [&] {
     Doorbell bell(GetParam());
     std::atomic<int> token{0};
     std::thread sender([&] {

@@ -13,31 +13,22 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/sequential_renderers.h"
-#include "test_support.h"
+#include "machine_test_support.h"
 
 namespace raycube::host {
 namespace {
 
-using testing_support::sanitized;
+using namespace testing_support;
+
 int imageSide() {
   return sanitized() ? 16 : 48;
-}
-
-RenderSettings settingsFor(int side, core::Sampling sampling, int threads = 0) {
-  RenderSettings s;
-  s.width = side;
-  s.height = side;
-  s.sampling = sampling;
-  s.threads = threads;
-  s.progress = false;
-  return s;
 }
 
 // "" stands for the built-in balls scene of size 2; anything else is a file in scenes/.
 std::vector<std::string> sceneNames() {
   std::vector<std::string> names{""};
   for (const auto& entry :
-       std::filesystem::directory_iterator(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes"))
+       std::filesystem::directory_iterator(testing_support::sourcePath("scenes")))
     if (entry.path().extension() == ".nff") names.push_back(entry.path().filename().string());
   std::sort(names.begin() + 1, names.end());
   return names;
@@ -45,15 +36,7 @@ std::vector<std::string> sceneNames() {
 
 core::Scene loadScene(const std::string& name) {
   if (name.empty()) return core::makeBalls(2);
-  return core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" / name);
-}
-
-// Index of the first pixel with a NaN or infinite channel, or -1.
-long firstNonFinitePixel(const core::Image& image) {
-  for (std::size_t i = 0; i < image.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      if (!std::isfinite(image.pixels[i][c])) return long(i);
-  return -1;
+  return core::readNff(testing_support::scenePath(name));
 }
 
 void expectSameRayCounts(const core::TraceCounters& a, const core::TraceCounters& b,

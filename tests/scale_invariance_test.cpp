@@ -18,12 +18,12 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/sequential_renderers.h"
-#include "test_support.h"
+#include "machine_test_support.h"
 
 namespace raycube::host {
 namespace {
 
-using testing_support::sanitized;
+using namespace testing_support;
 
 // Near the point where the big ball of the sphereflake rests on the floor, (0, 0, -0.5): two surfaces
 // meeting at a grazing angle, lit floor in front, the shadowed wedge between floor and ball, and the ball's
@@ -40,23 +40,11 @@ core::Scene contactNeighbourhood() {
 core::Scene sceneByName(const std::string& name) {
   if (name == "balls2") return core::makeBalls(2);
   if (name == "contact") return contactNeighbourhood();
-  return core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" / (name + ".nff"));
+  return core::readNff(testing_support::scenePath(name + ".nff"));
 }
 
 RenderResult render(const core::Scene& scene, int side) {
-  RenderSettings settings;
-  settings.width = side;
-  settings.height = side;
-  settings.sampling = core::Sampling::Centers;
-  settings.progress = false;
-  return renderImageParallel(scene, settings);
-}
-
-long firstNonFinitePixel(const core::Image& image) {
-  for (std::size_t i = 0; i < image.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      if (!std::isfinite(image.pixels[i][c])) return long(i);
-  return -1;
+  return renderImageParallel(scene, settingsFor(side));
 }
 
 // The pixels that differ most, for a failure message a reader can act on.

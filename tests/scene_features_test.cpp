@@ -7,12 +7,13 @@
 #include "core/balls.h"
 #include "core/nff_reader.h"
 #include "core/whitted.h"
+#include "test_support.h"
 
 namespace raycube::core {
 namespace {
 
 Scene shipped(const char* name) {
-  return readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "scenes" / name);
+  return readNff(testing_support::scenePath(name));
 }
 
 TEST(SceneFeatures, BallsUsesSpheresAPolygonAndReflectionOnly) {

@@ -9,6 +9,7 @@
 
 #include "core/balls.h"
 #include "host/sequential_renderers.h"
+#include "test_support.h"
 
 namespace raycube::host {
 namespace {
@@ -21,8 +22,7 @@ constexpr std::uint64_t kSpdShadowRays = 954368;
 constexpr double kRelativeTolerance = 0.10;
 
 TEST(SpdRayCounts, Balls4At512WithCornerSamplingMatchesSpd) {
-  const char* sanitized = std::getenv("RAYCUBE_SANITIZED");
-  if (sanitized != nullptr && std::string(sanitized) == "1")
+  if (testing_support::sanitized())
     GTEST_SKIP()
         << "counts are only meaningful at the SPD's 512x512 on 7382 objects, too slow when sanitized";
 
