@@ -18,6 +18,7 @@
 #include "host/load_chart.h"
 #include "host/machine.h"
 #include "host/machine_report.h"
+#include "host/progress.h"
 #include "host/run_report.h"
 #include "host/sequential_renderers.h"
 #include "host/stats_report.h"
@@ -109,20 +110,23 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
   throw std::invalid_argument("unknown mode");
 }
 
-void writeOutputs(const core::Image& image, const core::Scene& scene, const std::string& output) {
+// Returns the paths written.
+std::vector<std::string> writeOutputs(const core::Image& image, const core::Scene& scene,
+                                      const std::string& output) {
   if (!output.empty()) {
     const std::filesystem::path path(output);
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     core::writeImage(image, path);
-    std::cout << "wrote " << path.string() << '\n';
-    return;
+    return {path.string()};
   }
   std::filesystem::create_directories("out");
+  std::vector<std::string> written;
   for (const char* ext : {".exr", ".png"}) {
     const std::filesystem::path path = std::filesystem::path("out") / (scene.name + ext);
     core::writeImage(image, path);
-    std::cout << "wrote " << path.string() << '\n';
+    written.push_back(path.string());
   }
+  return written;
 }
 
 // Charts and reports go where the user points, creating the folder as the image outputs do.
@@ -176,8 +180,7 @@ RunReport renderRunReport(const RenderCommand& cmd, const core::Scene& scene, co
   return run;
 }
 
-int runRender(const RenderCommand& cmd) {
-  const core::Scene scene = loadScene(cmd);
+RenderSettings renderSettingsOf(const RenderCommand& cmd, const core::Scene& scene) {
   RenderSettings settings;
   settings.width = scene.camera.width;
   settings.height = scene.camera.height;
@@ -190,32 +193,61 @@ int runRender(const RenderCommand& cmd) {
   settings.precision = kPrecisions.at(cmd.precision);
   settings.threads = cmd.threads;
   settings.progress = !cmd.quiet;
-  std::optional<MachineReport> report;
-  const RenderResult result = render(scene, cmd, settings, report);
-  writeOutputs(result.image, scene, cmd.output);
+  return settings;
+}
+
+// Everything --overlay, --load-chart, --stats and --report ask for; returns the paths written.
+std::vector<std::string> writeExtras(const RenderCommand& cmd, const core::Scene& scene,
+                                     const RenderSettings& settings, const RenderResult& result,
+                                     const std::optional<MachineReport>& report) {
+  std::vector<std::string> written;
   std::string caption = runCaption(scene, settings, result);
   if (report) caption += ", " + partitionName(*report);
   if (!cmd.overlayPath.empty()) {
     if (!report) throw std::invalid_argument("--overlay needs --mode machine");
     writeChart(loadOverlay(result.image, *report, caption), ensureParent(cmd.overlayPath));
+    written.push_back(cmd.overlayPath);
   }
   if (!cmd.loadChartPath.empty()) {
     if (!report) throw std::invalid_argument("--load-chart needs --mode machine");
     writeChart(figure15(*report, caption), ensureParent(cmd.loadChartPath));
+    written.push_back(cmd.loadChartPath);
   }
-  if (!cmd.statsPath.empty() || !cmd.reportPath.empty()) {
-    nlohmann::json json = statsJson(scene, result);
-    if (report) json["machine"] = machineJson(*report);
-    if (!cmd.statsPath.empty()) writeJson(json, cmd.statsPath);
-    if (!cmd.reportPath.empty()) {
-      const RunReport run = renderRunReport(cmd, scene, result, report ? &*report : nullptr, json, caption);
-      writeReport(run, ensureParent(cmd.reportPath));
-      std::cout << "wrote " << cmd.reportPath << '\n';
-    }
+  if (cmd.statsPath.empty() && cmd.reportPath.empty()) return written;
+  nlohmann::json json = statsJson(scene, result);
+  if (report) json["machine"] = machineJson(*report);
+  if (!cmd.statsPath.empty()) writeJson(json, cmd.statsPath);
+  if (!cmd.reportPath.empty()) {
+    writeReport(renderRunReport(cmd, scene, result, report ? &*report : nullptr, json, caption),
+                ensureParent(cmd.reportPath));
+    written.push_back(cmd.reportPath);
   }
-  std::cout << summaryText(scene, result);
+  return written;
+}
+
+int runRender(const RenderCommand& cmd) {
+  std::optional<MachineReport> report;
+  std::optional<RenderResult> result;
+  std::optional<core::Scene> scene;
+  std::vector<std::string> written;
+  {
+    // One progress line for the whole command; the renderers' phases join it. It ends before anything
+    // goes to stdout, so the two never share a terminal line.
+    Progress progress(!cmd.quiet);
+    progress.phase("reading");
+    scene.emplace(loadScene(cmd));
+    const RenderSettings settings = renderSettingsOf(cmd, *scene);
+    progress.phase("preprocessing");
+    result.emplace(render(*scene, cmd, settings, report));
+    progress.phase("writing");
+    written = writeOutputs(result->image, *scene, cmd.output);
+    const std::vector<std::string> extras = writeExtras(cmd, *scene, settings, *result, report);
+    written.insert(written.end(), extras.begin(), extras.end());
+  }
+  for (const std::string& path : written) std::cout << "wrote " << path << '\n';
+  std::cout << summaryText(*scene, *result);
   if (report) std::cout << machineTable(*report);
-  return result.counters.nonFinite > 0 ? 3 : 0;
+  return result->counters.nonFinite > 0 ? 3 : 0;
 }
 
 void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
