@@ -14,9 +14,12 @@
 #include "core/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
+#include "host/chart.h"
 #include "host/load_chart.h"
 #include "host/machine.h"
 #include "host/machine_report.h"
+#include "host/progress.h"
+#include "host/run_report.h"
 #include "host/sequential_renderers.h"
 #include "host/scaling.h"
 #include "host/simulated_report.h"
@@ -66,6 +69,7 @@ struct RenderCommand {
   std::string procs = "4x4";
   std::string overlayPath;
   std::string loadChartPath;
+  std::string reportPath;
   std::string lightRays = "pyramid";
   std::string balance = "bsp";
   std::string loadMetric = "cost";
@@ -73,6 +77,7 @@ struct RenderCommand {
   std::string platformPath;
   std::string costsPath;
   std::string tracePath;
+  std::string timelinePath;
   MachineSettings machine;
 };
 
@@ -125,20 +130,76 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
   throw std::invalid_argument("unknown mode");
 }
 
-void writeOutputs(const core::Image& image, const core::Scene& scene, const std::string& output) {
+// Returns the paths written.
+std::vector<std::string> writeOutputs(const core::Image& image, const core::Scene& scene,
+                                      const std::string& output) {
   if (!output.empty()) {
     const std::filesystem::path path(output);
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     core::writeImage(image, path);
-    std::cout << "wrote " << path.string() << '\n';
-    return;
+    return {path.string()};
   }
   std::filesystem::create_directories("out");
+  std::vector<std::string> written;
   for (const char* ext : {".exr", ".png"}) {
     const std::filesystem::path path = std::filesystem::path("out") / (scene.name + ext);
     core::writeImage(image, path);
-    std::cout << "wrote " << path.string() << '\n';
+    written.push_back(path.string());
   }
+  return written;
+}
+
+// Charts and reports go where the user points, creating the folder as the image outputs do.
+std::filesystem::path ensureParent(const std::filesystem::path& path) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  return path;
+}
+
+BarChart figure15(const MachineReport& report, const std::string& caption) {
+  const LoadBalance balance = loadBalanceOf(report);
+  return loadChart(balance.estimated, balance.actualInMetric, caption);
+}
+
+std::vector<std::pair<std::string, std::string>> settingsOf(const RenderCommand& cmd,
+                                                            const core::Scene& scene,
+                                                            const RenderResult& result) {
+  std::vector<std::pair<std::string, std::string>> s{
+      {"scene", cmd.scenePath.empty() ? scene.name + " (built in)" : cmd.scenePath},
+      {"size", fmt::format("{}x{}", result.image.width, result.image.height)},
+      {"mode", cmd.mode},
+      {"sampling", cmd.sampling},
+      {"depth", std::to_string(cmd.depth)},
+      {"rays per pixel", std::to_string(cmd.spp)},
+      {"min-weight", fmt::format("{:g}", cmd.minWeight)},
+      {"precision", cmd.precision}};
+  if (cmd.mode != "machine") return s;
+  s.insert(s.end(), {{"processors", cmd.procs},
+                     {"balance", cmd.balance},
+                     {"load metric", cmd.loadMetric},
+                     {"sub-sampling window", std::to_string(cmd.machine.subsampleWindow)},
+                     {"light rays", cmd.lightRays},
+                     {"FIFO capacity", std::to_string(cmd.machine.queueCapacity)},
+                     {"cell level", std::to_string(cmd.machine.cellLevel)}});
+  return s;
+}
+
+// --report: the image, settings, summary and, from the machine, the overlay, figure 15 and the
+// per-processor table taken from the same JSON --stats writes.
+RunReport renderRunReport(const RenderCommand& cmd, const core::Scene& scene, const RenderResult& result,
+                          const MachineReport* report, const nlohmann::json& stats,
+                          const std::string& caption) {
+  RunReport run;
+  run.title = fmt::format("raycube render: {}", scene.name);
+  run.settings = settingsOf(cmd, scene, result);
+  run.summary = summaryText(scene, result) + (report ? machineTable(*report) : "") +
+                (report && report->simulated ? simulatedTable(*report) : "");
+  run.imagePng = pngBytes(result.image);
+  if (!report) return run;
+  addChartSection(run, loadOverlay(result.image, *report, caption));
+  addChartSection(run, figure15(*report, caption));
+  if (report->simulated) addChartSection(run, timelineChart(*report, caption));
+  run.sections.push_back(processorTableSection(stats.at("machine").at("processors")));
+  return run;
 }
 
 RenderSettings renderSettingsOf(const RenderCommand& cmd, const core::Scene& scene) {
@@ -157,35 +218,67 @@ RenderSettings renderSettingsOf(const RenderCommand& cmd, const core::Scene& sce
   return settings;
 }
 
-int runRender(const RenderCommand& cmd) {
-  const core::Scene scene = loadScene(cmd);
-  const RenderSettings settings = renderSettingsOf(cmd, scene);
-  std::optional<MachineReport> report;
-  const RenderResult result = render(scene, cmd, settings, report);
-  writeOutputs(result.image, scene, cmd.output);
+// Everything --overlay, --load-chart, --stats and --report ask for; returns the paths written.
+std::vector<std::string> writeExtras(const RenderCommand& cmd, const core::Scene& scene,
+                                     const RenderSettings& settings, const RenderResult& result,
+                                     const std::optional<MachineReport>& report) {
+  std::vector<std::string> written;
+  std::string caption = runCaption(scene, settings, result);
+  if (report) caption += ", " + partitionName(*report);
   if (!cmd.overlayPath.empty()) {
     if (!report) throw std::invalid_argument("--overlay needs --mode machine");
-    core::writeImage(loadOverlay(result.image, *report), cmd.overlayPath);
+    writeChart(loadOverlay(result.image, *report, caption), ensureParent(cmd.overlayPath));
+    written.push_back(cmd.overlayPath);
   }
   if (!cmd.loadChartPath.empty()) {
     if (!report) throw std::invalid_argument("--load-chart needs --mode machine");
-    const LoadBalance balance = loadBalanceOf(*report);
-    core::writeImage(loadChart(balance.estimated, balance.actualInMetric), cmd.loadChartPath);
+    writeChart(figure15(*report, caption), ensureParent(cmd.loadChartPath));
+    written.push_back(cmd.loadChartPath);
   }
-  if (!cmd.statsPath.empty()) {
-    nlohmann::json json = statsJson(scene, result);
-    if (report) json["machine"] = machineJson(*report);
-    if (report && report->simulated) json["simulated"] = simulatedJson(*report);
-    writeJson(json, cmd.statsPath);
+  if (!cmd.tracePath.empty() || !cmd.timelinePath.empty()) {
+    if (!report || !report->simulated) throw std::invalid_argument("--trace and --timeline need --emulate or --platform");
+    if (!cmd.tracePath.empty()) writeChromeTrace(*report, ensureParent(cmd.tracePath));
+    if (!cmd.timelinePath.empty()) writeChart(timelineChart(*report, caption), ensureParent(cmd.timelinePath));
+    for (const std::string& path : {cmd.tracePath, cmd.timelinePath})
+      if (!path.empty()) written.push_back(path);
   }
-  if (!cmd.tracePath.empty()) {
-    if (!report || !report->simulated) throw std::invalid_argument("--trace needs --emulate or --platform");
-    writeChromeTrace(*report, cmd.tracePath);
+  if (cmd.statsPath.empty() && cmd.reportPath.empty()) return written;
+  nlohmann::json json = statsJson(scene, result);
+  if (report) json["machine"] = machineJson(*report);
+  if (report && report->simulated) json["simulated"] = simulatedJson(*report);
+  if (!cmd.statsPath.empty()) writeJson(json, cmd.statsPath);
+  if (!cmd.reportPath.empty()) {
+    writeReport(renderRunReport(cmd, scene, result, report ? &*report : nullptr, json, caption),
+                ensureParent(cmd.reportPath));
+    written.push_back(cmd.reportPath);
   }
-  std::cout << summaryText(scene, result);
+  return written;
+}
+
+int runRender(const RenderCommand& cmd) {
+  std::optional<MachineReport> report;
+  std::optional<RenderResult> result;
+  std::optional<core::Scene> scene;
+  std::vector<std::string> written;
+  {
+    // One progress line for the whole command; the renderers' phases join it. It ends before anything
+    // goes to stdout, so the two never share a terminal line.
+    Progress progress(!cmd.quiet);
+    progress.phase("reading");
+    scene.emplace(loadScene(cmd));
+    const RenderSettings settings = renderSettingsOf(cmd, *scene);
+    progress.phase("preprocessing");
+    result.emplace(render(*scene, cmd, settings, report));
+    progress.phase("writing");
+    written = writeOutputs(result->image, *scene, cmd.output);
+    const std::vector<std::string> extras = writeExtras(cmd, *scene, settings, *result, report);
+    written.insert(written.end(), extras.begin(), extras.end());
+  }
+  for (const std::string& path : written) std::cout << "wrote " << path << '\n';
+  std::cout << summaryText(*scene, *result);
   if (report) std::cout << machineTable(*report);
   if (report && report->simulated) std::cout << simulatedTable(*report);
-  return result.counters.nonFinite > 0 ? 3 : 0;
+  return result->counters.nonFinite > 0 ? 3 : 0;
 }
 
 // The options of a render; a scaling study takes the same, but a list of processor counts for --procs.
@@ -246,14 +339,17 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
                      "A SimGrid platform XML to emulate (hosts node-0 ... and manager; see README)");
   render->add_option("--costs", cmd.costsPath, "Cost table: 'name value' lines (README, Emulated machine time)");
   render->add_option("--trace", cmd.tracePath, "Simulated timeline as Chrome trace-event JSON (Perfetto)");
+  render->add_option("--timeline", cmd.timelinePath, "Simulated timeline as a chart (.png or .svg)");
   render->add_option("-o,--output", cmd.output,
                      "Output image (.exr or .png); default: out/<scene>.exr and .png");
   render->add_option("--stats", cmd.statsPath, "Write statistics as JSON to this file");
   render->add_option("--overlay", cmd.overlayPath,
-                     "Machine: write the image with regions and their load (.png)");
+                     "Machine: the image with its regions numbered and coloured by load (.png or .svg)");
   render->add_option(
       "--load-chart", cmd.loadChartPath,
-      "Machine: figure 15, estimated against actual rays per processor, as a bar chart (.png)");
+      "Machine: figure 15, estimated against actual load per processor, as a bar chart (.png or .svg)");
+  render->add_option("--report", cmd.reportPath,
+                     "Write a self-contained HTML run report (image, settings, summary, charts, table)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
   render->get_option("--balls")->excludes("scene");
 }
@@ -311,6 +407,7 @@ struct TradeoffCommand {
   int processors = 16;
   std::string csv = "out/tradeoff.csv";
   std::string plot = "out/tradeoff.png";
+  std::string reportPath;
 };
 
 // `raycube tradeoff`: the knobs' speed against their error, as a table, CSV and a plot.
@@ -329,16 +426,30 @@ int runTradeoff(const TradeoffCommand& cmd) {
   const auto rows = measureTradeoff(scene, base, options, [](const TradeoffRow& r) {
     std::cerr << "  " << r.knob << " " << r.setting << ": " << fmt::format("{:.3f} s", r.seconds) << "\n";
   });
-  std::cout << tradeoffTable(rows);
+  const std::string table = tradeoffTable(rows);
+  std::cout << table;
   std::cerr << "measuring the load-estimate window on " << cmd.processors << " processors...\n";
-  std::cout << "\n" << subsampleTable(measureSubsampling(scene, base, cmd.processors, cmd.runs));
-  for (const std::string& path : {cmd.csv, cmd.plot}) {
-    const std::filesystem::path p(path);
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-  }
-  writeTradeoffCsv(rows, cmd.csv);
-  core::writeImage(tradeoffPlot(rows), cmd.plot);
+  const std::string windows = subsampleTable(measureSubsampling(scene, base, cmd.processors, cmd.runs));
+  std::cout << "\n" << windows;
+  const std::string caption = fmt::format(
+      "{}, {}x{}, image-parallel, median of {} runs; reference depth {}, {} rays per pixel", scene.name,
+      base.width, base.height, cmd.runs, options.referenceDepth, options.referenceRaysPerSample);
+  const LineChart plot = tradeoffPlot(rows, caption);
+  writeTradeoffCsv(rows, ensureParent(cmd.csv));
+  writeChart(plot, ensureParent(cmd.plot));
   std::cout << "wrote " << cmd.csv << " and " << cmd.plot << '\n';
+  if (!cmd.reportPath.empty()) {
+    RunReport run;
+    run.title = fmt::format("raycube tradeoff: {}", scene.name);
+    run.settings = {{"scene", cmd.scenePath.empty() ? scene.name + " (built in)" : cmd.scenePath},
+                    {"size", cmd.size},
+                    {"runs per setting", std::to_string(cmd.runs)},
+                    {"processors (sub-sampling study)", std::to_string(cmd.processors)}};
+    run.summary = table + "\n" + windows;
+    addChartSection(run, plot);
+    writeReport(run, ensureParent(cmd.reportPath));
+    std::cout << "wrote " << cmd.reportPath << '\n';
+  }
   return 0;
 }
 
@@ -352,7 +463,8 @@ void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
   t->add_option("--procs", cmd.processors, "Processors for the sub-sampling window study (BSP)")
       ->check(CLI::Range(1, 4096));
   t->add_option("--csv", cmd.csv, "Table as CSV");
-  t->add_option("--plot", cmd.plot, "Error against time as a PNG plot");
+  t->add_option("--plot", cmd.plot, "Error against time as a chart (.png or .svg)");
+  t->add_option("--report", cmd.reportPath, "Write a self-contained HTML report (tables and plot)");
 }
 
 struct CompareCommand {

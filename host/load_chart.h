@@ -3,8 +3,10 @@
 // sub-sampling beside the rays it actually processed, so a reader sees at a glance whether the estimate
 // ranked the processors right (Priol & Bouatouch 4, figure 15).
 #include <span>
+#include <string>
+#include <vector>
 
-#include "core/image.h"
+#include "host/chart.h"
 
 namespace raycube::host {
 
@@ -13,17 +15,15 @@ namespace raycube::host {
 // std::invalid_argument when the series are empty or of different lengths.
 double pearson(std::span<const double> a, std::span<const double> b);
 
-// Bar colours (linear RGB), exposed so tests and callers can find the bars in the picture.
-inline const core::Color kEstimatedBarColor{0.05, 0.25, 0.80};  // blue
-inline const core::Color kActualBarColor{0.90, 0.35, 0.02};     // orange
+// Each value over the series' mean; an all-zero (or empty) series is returned unchanged.
+std::vector<double> normalisedToMean(std::span<const double> values);
 
-// Grouped bar chart, one slot per processor: estimated (blue) on the left, actual (orange) on the right.
-// Each series is normalised to its own maximum, so the tallest bar of each reaches the top of the scale:
-// the two series count different things (sampled rays versus all rays), and the chart is about their
-// shape, not their scale. Grid lines mark 0.25 steps of that scale; a legend of two coloured squares
-// (estimated, then actual) sits in the top-right corner; there is no text. White background, 320 pixels
-// high, max(480, 24 per processor + margins) wide. Throws std::invalid_argument when the series are empty,
-// of different lengths, or hold a negative or non-finite count.
-core::Image loadChart(std::span<const double> estimated, std::span<const double> actual);
+// Figure 15 as a grouped bar chart, one group per processor: the load estimated from the sub-sampled rays
+// beside the rays it actually processed, each normalised to its own mean (the two count different things,
+// sampled rays against all rays, so the chart is about their shape; 1 is the average processor, as in the
+// summary and --stats). Throws std::invalid_argument when the series are empty, of different lengths, or
+// hold a negative or non-finite count.
+BarChart loadChart(std::span<const double> estimated, std::span<const double> actual,
+                   std::string caption = "");
 
 }  // namespace raycube::host

@@ -81,6 +81,7 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
       const int sy = std::min(view.samplesY() - 1, wy * window + window / 2);
       core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), colours, counters, scratch,
                          record);
+      ++sample.pixelsSampled;
     }
   if (metric == LoadMetric::Cost && !sample.segments.empty()) {
     // A ray counts one, plus its work relative to the mean ray's: every ray costs its message, walk set-up
@@ -91,6 +92,12 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
     for (ScreenSegment& s : sample.segments) s.weight = 1 + kWorkShare * s.weight / mean;
   }
   return sample;
+}
+
+double estimatedTotalRays(const LoadSample& sample, const core::View& view) {
+  if (sample.pixelsSampled == 0) return 0;
+  const double samples = double(view.samplesX()) * view.samplesY() * view.raysPerSample();
+  return double(sample.raysTraced) / double(sample.pixelsSampled) * samples;
 }
 
 bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, double y1, LoadMetric metric,

@@ -28,12 +28,18 @@ struct LoadSample {
   std::vector<ScreenSegment> segments;
   double raysPerSegment = 1;  // w * w: how many rays one sub-sampled ray represents
   std::uint64_t raysTraced = 0;
+  std::uint64_t pixelsSampled = 0;  // one per window
 };
 
 // lightRaysWhereTheyStart: with light cones or pyramids (3.7.2) a light ray is processed only where it
 // starts, so it weighs on that point of the screen instead of along its path.
 LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
                          int window, LoadMetric metric, bool lightRaysWhereTheyStart);
+
+// Every ray the whole image will trace, eye rays and all their descendants, extrapolated from the
+// sub-sampled pixels' trees (each stands for its window, and for every ray per pixel): the total work a
+// progress indication compares the rays finished with.
+double estimatedTotalRays(const LoadSample& sample, const core::View& view);
 
 // The part of a segment inside a rectangle (Liang-Barsky); false when none. Its weight is scaled by the kept
 // fraction of length for the cost metric and kept whole for the ray metric (figure 9: a split ray counts

@@ -47,7 +47,7 @@ struct ProcessorReport {
 
 // A run in simulated time (the SimGrid engine): the emulated machine's clock.
 enum class ProcessorState : std::uint8_t { Computing, Blocked, Idle };
-struct TimelineInterval {
+struct StateInterval {
   double start = 0, end = 0;  // simulated seconds
   std::uint32_t processor = 0;
   ProcessorState state = ProcessorState::Computing;
@@ -63,7 +63,7 @@ struct SimulatedRun {
   std::uint64_t rayMessages = 0;  // simulated ray messages, relays included
   double wallSeconds = 0;         // what the simulation took on this host
   std::vector<LinkTraffic> links;
-  std::vector<TimelineInterval> timeline;
+  std::vector<StateInterval> timeline;
 };
 
 struct MachineReport {

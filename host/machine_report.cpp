@@ -24,15 +24,6 @@ std::uint64_t costOf(const ProcessorReport& p) {
   return p.node.processed.intersectionTests + p.node.processed.boxTests;
 }
 
-std::vector<double> normalisedToMean(std::vector<double> v) {
-  double mean = 0;
-  for (double x : v) mean += x;
-  mean = v.empty() ? 0 : mean / double(v.size());
-  if (mean > 0)
-    for (double& x : v) x /= mean;
-  return v;
-}
-
 }  // namespace
 
 LoadBalance loadBalanceOf(const MachineReport& report) {
@@ -175,29 +166,31 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"processors", processors}};
 }
 
-core::Image loadOverlay(const core::Image& image, const MachineReport& report) {
-  core::Image out = image;
-  std::uint64_t maxLoad = 1;
-  for (const ProcessorReport& p : report.processors) maxLoad = std::max(maxLoad, loadOf(p));
+std::string partitionName(const MachineReport& report) {
+  const MachineSettings& m = report.settings;
+  if (m.balance == Balance::Uniform) return fmt::format("uniform {}x{} grid", m.rows, m.columns);
+  return fmt::format("BSP of {} areas ({} metric, sub-sampling {}x{})", m.rows * m.columns,
+                     m.loadMetric == LoadMetric::Cost ? "cost" : "rays", m.subsampleWindow,
+                     m.subsampleWindow);
+}
+
+ImageChart loadOverlay(const core::Image& image, const MachineReport& report, std::string caption) {
+  ImageChart chart;
+  chart.title = "Regions and the rays each processor processed";
+  chart.caption = std::move(caption);
+  chart.image = image;
+  chart.scaleLabel = "rays processed (segments)";
+  chart.legendNote = report.settings.balance == Balance::Uniform ? "uniform grid" : "BSP partition";
   auto clampX = [&](int v) { return std::clamp(v, 0, image.width); };
   auto clampY = [&](int v) { return std::clamp(v, 0, image.height); };
   for (const ProcessorReport& p : report.processors) {
-    const node::SampleRect& a = p.node.area;
     // Sample k sits on pixel k (centres) or on its top-left corner (corners): either way the area
-    // [x0, x1) x [y0, y1) of samples is drawn over the same pixels, clamped to the image.
-    const int x0 = clampX(a.x0), x1 = clampX(a.x1), y0 = clampY(a.y0), y1 = clampY(a.y1);
-    const double share = double(loadOf(p)) / double(maxLoad);
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        core::Color& c = out.at(x, y);
-        c *= 0.35 + 0.65 * share;
-        const bool border = x == x0 || y == y0 || x == x1 - 1 || y == y1 - 1;
-        const bool bar = y - y0 < std::max(2, (y1 - y0) / 16) && x - x0 < int(share * (x1 - x0));
-        if (border) c = core::Color(1.0);
-        if (bar && !border) c = core::Color(1.0, 0.2, 0.1);
-      }
+    // [x0, x1) x [y0, y1) of samples covers the same pixels, clamped to the image.
+    const node::SampleRect& a = p.node.area;
+    chart.regions.push_back({clampX(a.x0), clampY(a.y0), clampX(a.x1), clampY(a.y1),
+                             std::to_string(p.node.id), double(loadOf(p))});
   }
-  return out;
+  return chart;
 }
 
 }  // namespace raycube::host

@@ -1,10 +1,11 @@
 #pragma once
 // What the machine measured, per processor: the compact table of the summary, the JSON of --stats, and a
-// picture (--overlay): the image with region borders and each region tinted by its load.
+// picture (--overlay): the image with its regions numbered and tinted by their load.
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/image.h"
+#include "host/chart.h"
 #include "host/machine.h"
 
 namespace raycube::host {
@@ -22,8 +23,10 @@ LoadBalance loadBalanceOf(const MachineReport& report);
 
 std::string machineTable(const MachineReport& report);
 nlohmann::json machineJson(const MachineReport& report);
-// Region borders in white; each region darkened in proportion to (1 - its load / the largest load), and a
-// bar along its top edge as long as its share of the largest load. Load = ray segments processed.
-core::Image loadOverlay(const core::Image& image, const MachineReport& report);
+// "uniform 4x4 grid" or "BSP of 16 areas (cost metric, sub-sampling 8x8)": how the screen was cut.
+std::string partitionName(const MachineReport& report);
+// The image with each processor's region outlined, numbered, and tinted by the rays it processed on a
+// colour scale beside the picture (--overlay).
+ImageChart loadOverlay(const core::Image& image, const MachineReport& report, std::string caption = "");
 
 }  // namespace raycube::host

@@ -1,36 +1,127 @@
 #include "host/progress.h"
 
-#include <cstdio>
+#include <fmt/format.h>
+
+#include <algorithm>
 
 namespace raycube::host {
+namespace {
 
 using namespace std::chrono_literals;
 
-Progress::Progress(std::string what, std::uint64_t total, bool enabled)
-    : what_(std::move(what)), total_(total) {
-  if (enabled && total > 0) reporter_ = std::thread([this] { report(); });
+// An estimate can be short (a sub-sample misses some work): never claim a phase finished before it ends.
+constexpr double kMaxFractionBeforeTheEnd = 0.99;
+// Below this fraction the rate says too little to extrapolate the time left.
+constexpr double kMinFractionToExtrapolate = 0.01;
+constexpr auto kReportEvery = 250ms;
+
+std::string duration(double seconds) {
+  if (seconds < 60) return fmt::format("{:.1f} s", seconds);
+  return fmt::format("{}:{:02} min", int(seconds) / 60, int(seconds) % 60);
+}
+
+}  // namespace
+
+std::atomic<Progress*> Progress::open_{nullptr};
+
+std::string progressLine(const ProgressSnapshot& s) {
+  std::string text = s.phase;
+  if (s.fraction >= 0) text += fmt::format(" {:3.0f}%", 100 * s.fraction);
+  text += "  " + duration(s.phaseSeconds);
+  if (s.remainingSeconds >= 0) text += ", about " + duration(s.remainingSeconds) + " left";
+  return text;
+}
+
+Progress::Progress(bool enabled, std::FILE* out, std::chrono::milliseconds quietFor) : line_(this) {
+  open(enabled, out, quietFor);
+}
+
+Progress::Progress(std::string what, std::uint64_t total, bool enabled) : line_(open_.load()) {
+  if (line_ == nullptr) {
+    line_ = this;
+    open(enabled, stderr, 1s);
+  }
+  line_->phase(what, double(total));
+}
+
+void Progress::open(bool enabled, std::FILE* out, std::chrono::milliseconds quietFor) {
+  out_ = out;
+  Progress* none = nullptr;
+  open_.compare_exchange_strong(none, this);  // a nested line (tests) stays private
+  quietFor_ = quietFor;
+  if (enabled) reporter_ = std::thread([this, quietFor] { report(quietFor); });
 }
 
 Progress::~Progress() {
+  if (line_ != this) return;  // a joined handle: the line goes on
+  Progress* self = this;
+  open_.compare_exchange_strong(self, nullptr);
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
   }
   stop_.notify_all();
-  if (reporter_.joinable()) reporter_.join();
-  if (printed_) std::fprintf(stderr, "\r%s: 100%%   \n", what_.c_str());
+  if (!reporter_.joinable()) return;
+  reporter_.join();
+  // A run that outlasted the quiet time ends its line, whether or not the reporter got to print.
+  const double seconds = snapshot().runSeconds;
+  if (printed_ || seconds >= std::chrono::duration<double>(quietFor_).count()) {
+    const std::string done = fmt::format("done in {}", duration(seconds));
+    std::fprintf(out_, "\r%-*s\n", int(std::max(lastWidth_, done.size())), done.c_str());
+    std::fflush(out_);
+  }
 }
 
-void Progress::report() {
+void Progress::phase(const std::string& name, double expectedWork) {
+  if (line_ != this) return line_->phase(name, expectedWork);
+  std::lock_guard lock(mutex_);
+  phase_ = name;
+  phaseStart_ = Clock::now();
+  expected_.store(expectedWork, std::memory_order_relaxed);
+  done_.store(0, std::memory_order_relaxed);
+}
+
+void Progress::expectWork(double expectedWork) {
+  line_->expected_.store(expectedWork, std::memory_order_relaxed);
+}
+
+ProgressSnapshot Progress::snapshot() const {
+  if (line_ != this) return line_->snapshot();
+  const Clock::time_point now = Clock::now();
+  ProgressSnapshot s;
+  {
+    std::lock_guard lock(mutex_);
+    s.phase = phase_;
+    s.phaseSeconds = std::chrono::duration<double>(now - phaseStart_).count();
+  }
+  s.runSeconds = std::chrono::duration<double>(now - start_).count();
+  const double expected = expected_.load(std::memory_order_relaxed);
+  if (expected > 0) {
+    s.fraction = std::min(kMaxFractionBeforeTheEnd, double(done_.load(std::memory_order_relaxed)) / expected);
+    if (s.fraction >= kMinFractionToExtrapolate)
+      s.remainingSeconds = s.phaseSeconds * (1 - s.fraction) / s.fraction;
+  }
+  return s;
+}
+
+void Progress::print(const ProgressSnapshot& snapshot) {
+  const std::string text = progressLine(snapshot);
+  // Pad over what a longer previous line left behind.
+  std::fprintf(out_, "\r%-*s", int(std::max(lastWidth_, text.size())), text.c_str());
+  std::fflush(out_);
+  lastWidth_ = text.size();
+  printed_ = true;
+}
+
+void Progress::report(std::chrono::milliseconds quietFor) {
   std::unique_lock lock(mutex_);
-  // Quiet for the first second: short renders print nothing.
-  if (stop_.wait_for(lock, 1s, [this] { return stopping_; })) return;
+  if (stop_.wait_for(lock, quietFor, [this] { return stopping_; })) return;
   do {
-    const double fraction = double(done_.load(std::memory_order_relaxed)) / double(total_);
-    std::fprintf(stderr, "\r%s: %3.0f%%", what_.c_str(), 100 * fraction);
-    std::fflush(stderr);
-    printed_ = true;
-  } while (!stop_.wait_for(lock, 500ms, [this] { return stopping_; }));
+    lock.unlock();
+    const ProgressSnapshot s = snapshot();
+    lock.lock();
+    print(s);
+  } while (!stop_.wait_for(lock, kReportEvery, [this] { return stopping_; }));
 }
 
 }  // namespace raycube::host

@@ -1,35 +1,77 @@
 #pragma once
-// Progress on stderr for renders longer than a second: a reporter thread samples an atomic counter that
-// workers bump as they finish samples, so reporting costs them one relaxed increment per row.
+// Progress on stderr that tells the truth. A run goes through named phases (reading, estimating,
+// partitioning, pruning, cells, tracing, writing); within a phase a work counter is compared with an
+// estimate of the phase's total work (for tracing: every ray of every tree, estimated from the sub-sampled
+// pixels of 3.7.1), and the time left is extrapolated from the rate so far. A reporter thread prints,
+// quiet during the first second so short runs print nothing; workers pay one relaxed atomic add per batch.
+//
+// stderr is one line, so a process has one progress line: the command line opens it around a whole
+// command, and a renderer's Progress joins it as a phase (or opens its own when none is open, as in tests
+// and benchmarks).
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <cstdio>
 #include <mutex>
 #include <string>
 #include <thread>
 
 namespace raycube::host {
 
+struct ProgressSnapshot {
+  std::string phase;
+  double fraction = -1;          // of the phase's estimated work, in [0, 1]; < 0 when no estimate was given
+  double phaseSeconds = 0;       // since the phase began
+  double remainingSeconds = -1;  // of the phase, extrapolated; < 0 when unknown
+  double runSeconds = 0;         // since the progress line was opened
+};
+// "tracing  42%  1.2 s, about 1.7 s left" (or "pruning  0.3 s" without an estimate).
+std::string progressLine(const ProgressSnapshot& snapshot);
+
 class Progress {
  public:
+  // Opens the process's progress line, printing to `out` after `quietFor` while enabled.
+  explicit Progress(bool enabled, std::FILE* out = stderr,
+                    std::chrono::milliseconds quietFor = std::chrono::seconds(1));
+  // A renderer's handle: joins the open progress line as phase `what` with `total` units of work (0: no
+  // estimate), or opens its own line when none is open.
   Progress(std::string what, std::uint64_t total, bool enabled);
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  void advance(std::uint64_t done) { done_.fetch_add(done, std::memory_order_relaxed); }
+  // Starts a phase: the work counter restarts from 0, `expectedWork` units are expected (0: unknown).
+  void phase(const std::string& name, double expectedWork = 0);
+  // A better estimate of the current phase's total work.
+  void expectWork(double expectedWork);
+  // `done` more units finished (any thread).
+  void advance(std::uint64_t done) { line_->done_.fetch_add(done, std::memory_order_relaxed); }
+  // Units finished so far, for a driver that sums counters kept elsewhere (the machine's node stats).
+  void setDone(std::uint64_t done) { line_->done_.store(done, std::memory_order_relaxed); }
+  ProgressSnapshot snapshot() const;
 
  private:
-  void report();
+  using Clock = std::chrono::steady_clock;
+  void open(bool enabled, std::FILE* out, std::chrono::milliseconds quietFor);
+  void report(std::chrono::milliseconds quietFor);
+  void print(const ProgressSnapshot& snapshot);
 
-  std::string what_;
-  std::uint64_t total_;
+  Progress* line_;  // this, or the open line it joined
+  static std::atomic<Progress*> open_;
+
+  std::FILE* out_ = stderr;
+  std::chrono::milliseconds quietFor_{0};
+  Clock::time_point start_ = Clock::now();
+  mutable std::mutex mutex_;  // guards the phase's name and start, and the reporter's state
+  std::string phase_;
+  Clock::time_point phaseStart_ = start_;
+  std::atomic<double> expected_{0};
   std::atomic<std::uint64_t> done_{0};
-  std::mutex mutex_;
   std::condition_variable stop_;
   bool stopping_ = false;
   bool printed_ = false;
+  std::size_t lastWidth_ = 0;
   std::thread reporter_;
 };
 

@@ -178,7 +178,7 @@ class Timeline {
   void add(std::uint32_t processor, ProcessorState state, double start, double end) {
     if (end <= start) return;
     if (!intervals_.empty()) {
-      TimelineInterval& last = intervals_.back();
+      StateInterval& last = intervals_.back();
       if (last.processor == processor && last.state == state && last.end == start) {
         last.end = end;
         return;
@@ -186,10 +186,10 @@ class Timeline {
     }
     intervals_.push_back({start, end, processor, state});
   }
-  std::vector<TimelineInterval> take() { return std::move(intervals_); }
+  std::vector<StateInterval> take() { return std::move(intervals_); }
 
  private:
-  std::vector<TimelineInterval> intervals_;
+  std::vector<StateInterval> intervals_;
 };
 
 // A processor's actor: step the node, charge the work the step counted, then ship what it produced (so
@@ -329,7 +329,7 @@ MachineRun receiveResults(PipeReader& in, core::ContributionSink& host) {
       s.rayMessages = in.value<std::uint64_t>();
       s.wallSeconds = in.value<double>();
       s.links = in.vector<LinkTraffic>();
-      s.timeline = in.vector<TimelineInterval>();
+      s.timeline = in.vector<StateInterval>();
       run.simulated = std::move(s);
       return run;
     }

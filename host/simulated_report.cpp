@@ -86,10 +86,24 @@ void writeChromeTrace(const MachineReport& report, const std::filesystem::path& 
                        p.node.id, p.node.id);
     first = false;
   }
-  for (const TimelineInterval& i : run.timeline)
+  for (const StateInterval& i : run.timeline)
     out << fmt::format(",\n{{\"name\":\"{}\",\"ph\":\"X\",\"pid\":0,\"tid\":{},\"ts\":{:.3f},\"dur\":{:.3f}}}",
                        stateName(i.state), i.processor, i.start * 1e6, (i.end - i.start) * 1e6);
   out << "\n]}\n";
+}
+
+TimelineChart timelineChart(const MachineReport& report, const std::string& caption) {
+  const SimulatedRun& run = simulatedOf(report);
+  TimelineChart chart;
+  chart.title = fmt::format("Processor states over simulated time ({})", run.platform);
+  chart.caption = caption;
+  chart.time.label = "simulated time (s)";
+  chart.states = {stateName(ProcessorState::Computing), stateName(ProcessorState::Blocked),
+                  stateName(ProcessorState::Idle)};
+  for (const ProcessorReport& p : report.processors) chart.rows.push_back({fmt::format("P{}", p.node.id), {}});
+  for (const StateInterval& i : run.timeline)
+    chart.rows[i.processor].intervals.push_back({i.start, i.end, std::size_t(i.state)});
+  return chart;
 }
 
 }  // namespace raycube::host

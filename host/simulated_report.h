@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "host/chart.h"
 #include "host/machine.h"
 
 namespace raycube::host {
@@ -15,5 +16,7 @@ std::string simulatedTable(const MachineReport& report);
 nlohmann::json simulatedJson(const MachineReport& report);
 // Chrome trace-event JSON (Perfetto, chrome://tracing): one track per processor, one slice per state.
 void writeChromeTrace(const MachineReport& report, const std::filesystem::path& path);
+// The same as a chart: one row per processor, coloured by state (the picture of saturation spreading).
+TimelineChart timelineChart(const MachineReport& report, const std::string& caption);
 
 }  // namespace raycube::host

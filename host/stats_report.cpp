@@ -14,6 +14,13 @@ double megaRaysPerSecond(const RenderResult& r) {
 
 }  // namespace
 
+std::string runCaption(const core::Scene& scene, const RenderSettings& settings, const RenderResult& result) {
+  return fmt::format("{}, {}x{}, {} ({} workers), depth {}, spp {}, min-weight {:g}, {}", scene.name,
+                     result.image.width, result.image.height, result.mode, result.workers,
+                     settings.shading.maxDepth, settings.shading.raysPerSample, settings.shading.minWeight,
+                     nameOf(result.precision));
+}
+
 std::string summaryText(const core::Scene& scene, const RenderResult& result) {
   const core::TraceCounters& c = result.counters;
   std::string text = fmt::format("scene {} ({} objects, {} lights), {}x{}, mode {} ({} workers), {} rays\n",

@@ -6,9 +6,12 @@
 
 #include "core/scene.h"
 #include "host/render_result.h"
+#include "host/render_settings.h"
 
 namespace raycube::host {
 
+// One line naming the scene and the settings a picture came from (the caption of every chart).
+std::string runCaption(const core::Scene& scene, const RenderSettings& settings, const RenderResult& result);
 std::string summaryText(const core::Scene& scene, const RenderResult& result);
 nlohmann::json statsJson(const core::Scene& scene, const RenderResult& result);
 void writeJson(const nlohmann::json& json, const std::filesystem::path& path);

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "core/image_drawing.h"
 #include "host/machine.h"
 #include "host/machine_report.h"
 #include "host/sequential_renderers.h"
@@ -149,43 +148,23 @@ void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesyste
   if (!out) throw std::runtime_error("failed writing " + path.string());
 }
 
-core::Image tradeoffPlot(const std::vector<TradeoffRow>& rows) {
-  constexpr int kWidth = 640, kHeight = 400, kMargin = 40;
-  constexpr double kFloor = 1e-4;  // RMSE below this is drawn at the bottom (log scale)
-  core::Image plot = core::Image::filled(kWidth, kHeight, core::Color(1.0));
-  double maxSeconds = 0, maxError = kFloor * 10;
-  for (const TradeoffRow& r : rows) {
-    maxSeconds = std::max(maxSeconds, r.seconds);
-    maxError = std::max(maxError, r.rmse);
-  }
-  const double top = std::log10(maxError), bottom = std::log10(kFloor);
-  auto x = [&](double s) { return kMargin + int((kWidth - 2 * kMargin) * s / std::max(maxSeconds, 1e-9)); };
-  auto y = [&](double e) {
-    const double l = std::log10(std::max(e, kFloor));
-    return kHeight - kMargin - int((kHeight - 2 * kMargin) * (l - bottom) / (top - bottom));
-  };
-  // Axes, and a grid line per decade of error.
-  for (double decade = std::ceil(bottom); decade <= top; decade += 1)
-    core::fillRect(plot, kMargin, y(std::pow(10.0, decade)), kWidth - kMargin, y(std::pow(10.0, decade)) + 1,
-                   core::Color(0.8));
-  core::fillRect(plot, kMargin - 2, kMargin, kMargin, kHeight - kMargin, core::Color(0.0));
-  core::fillRect(plot, kMargin - 2, kHeight - kMargin, kWidth - kMargin, kHeight - kMargin + 2,
-                 core::Color(0.0));
-  for (std::size_t k = 0; k < std::size(kKnobs); ++k) {
-    int px = -1, py = -1;
+LineChart tradeoffPlot(const std::vector<TradeoffRow>& rows, std::string caption) {
+  LineChart chart;
+  chart.title = "Speed against accuracy: each knob swept from cheap to accurate";
+  chart.caption = std::move(caption);
+  chart.x = {.label = "render time, median (s)", .scale = AxisScale::Log};
+  chart.y = {.label = "RMSE against the converged reference (linear RGB)", .scale = AxisScale::Log};
+  for (const char* knob : kKnobs) {
+    Series series{.name = knob};
     for (const TradeoffRow& r : rows) {
-      if (r.knob != kKnobs[k]) continue;
-      const int cx = x(r.seconds), cy = y(r.rmse);
-      if (px >= 0) core::drawLine(plot, px, py, cx, cy, kKnobColors[k]);
-      core::fillRect(plot, cx - 3, cy - 3, cx + 4, cy + 4, kKnobColors[k]);
-      px = cx;
-      py = cy;
+      if (r.knob != knob) continue;
+      series.x.push_back(r.seconds);
+      series.y.push_back(r.rmse);
+      series.pointLabels.push_back(r.setting);
     }
-    // Legend: a square per knob, top right, in the order of kKnobs.
-    core::fillRect(plot, kWidth - kMargin - 60 + 20 * int(k), 10, kWidth - kMargin - 48 + 20 * int(k), 22,
-                   kKnobColors[k]);
+    chart.series.push_back(std::move(series));
   }
-  return plot;
+  return chart;
 }
 
 }  // namespace raycube::host

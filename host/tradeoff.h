@@ -10,6 +10,7 @@
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/trace_stats.h"
+#include "host/chart.h"
 #include "host/render_settings.h"
 
 namespace raycube::host {
@@ -47,9 +48,9 @@ std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const Ren
                                              int processors, int runs);
 std::string subsampleTable(const std::vector<SubsampleRow>& rows);
 void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path);
-// Error (RMSE, log scale) against time, one polyline per knob in the colours of kKnobColors.
-core::Image tradeoffPlot(const std::vector<TradeoffRow>& rows);
+// Error (RMSE) against time, both on log scales: one named curve per knob, each point labelled with its
+// setting.
+LineChart tradeoffPlot(const std::vector<TradeoffRow>& rows, std::string caption = "");
 inline const char* const kKnobs[] = {"depth", "min-weight", "spp", "precision"};
-inline const core::Color kKnobColors[] = {{0.85, 0.2, 0.1}, {0.1, 0.45, 0.85}, {0.2, 0.65, 0.2}, {0.6, 0.3, 0.7}};
 
 }  // namespace raycube::host

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -169,6 +170,58 @@ TEST_F(Cli, StatsAreParseableJsonWithRayCounts) {
   EXPECT_EQ(stats.at("image").at("width").get<int>(), 16);
   EXPECT_EQ(stats.at("nonFiniteContributions").get<int>(), 0);
   EXPECT_GT(stats.at("rays").at("shadow").get<int>(), 0);
+}
+
+// Every cell of the report's per-processor table, as (processor row, JSON pointer, text).
+struct TableCell {
+  std::size_t row;
+  std::string pointer, text;
+};
+std::vector<TableCell> processorCells(const std::string& html) {
+  std::vector<TableCell> cells;
+  const std::regex rowPattern("<tr><td data-key=[\\s\\S]*?</tr>");
+  const std::regex cellPattern("<td data-key=\"([^\"]*)\">([^<]*)</td>");
+  std::size_t row = 0;
+  for (auto r = std::sregex_iterator(html.begin(), html.end(), rowPattern); r != std::sregex_iterator();
+       ++r, ++row) {
+    const std::string text = r->str();
+    for (auto c = std::sregex_iterator(text.begin(), text.end(), cellPattern); c != std::sregex_iterator();
+         ++c)
+      cells.push_back({row, (*c)[1].str(), (*c)[2].str()});
+  }
+  return cells;
+}
+
+TEST_F(Cli, ReportTableEqualsTheStatsJson) {
+  const Outcome r =
+      run("render --balls 1 --size 32x32 --procs 2x3 -q -o x.png --stats s.json --report out/r.html");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const nlohmann::json processors =
+      nlohmann::json::parse(slurp(dir_ / "s.json")).at("machine").at("processors");
+  const std::vector<TableCell> cells = processorCells(slurp(dir_ / "out" / "r.html"));
+  ASSERT_EQ(processors.size(), 6u);
+  ASSERT_EQ(cells.size(), processors.size() * 15) << "15 columns per processor";
+  for (const TableCell& cell : cells) {
+    const nlohmann::json& expected = processors.at(cell.row).at(nlohmann::json::json_pointer(cell.pointer));
+    ASSERT_TRUE(expected.is_number()) << cell.pointer;
+    const nlohmann::json shown = nlohmann::json::parse(cell.text);
+    EXPECT_EQ(shown.get<double>(), expected.get<double>())
+        << "processor row " << cell.row << " " << cell.pointer;
+    if (expected.is_number_integer()) {
+      EXPECT_EQ(shown.get<long long>(), expected.get<long long>()) << cell.pointer;
+    }
+  }
+}
+
+TEST_F(Cli, ChartsTakeTheirFormatFromTheExtension) {
+  const Outcome r =
+      run("render --balls 1 --size 32x32 --procs 2x2 -q -o x.png --overlay o.svg --load-chart c.png");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "o.svg").find(">rays processed (segments)</text>"), std::string::npos);
+  EXPECT_EQ(slurp(dir_ / "c.png").substr(1, 3), "PNG");
+  const Outcome bad = run("render --balls 1 --size 32x32 --procs 2x2 -q -o x.png --load-chart c.gif");
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("c.gif"), std::string::npos) << bad.err;
 }
 
 }  // namespace

@@ -12,33 +12,6 @@
 namespace raycube::host {
 namespace {
 
-int countColor(const core::Image& image, const core::Color& color, int x0 = 0, int x1 = -1) {
-  if (x1 < 0) x1 = image.width;
-  int count = 0;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = x0; x < x1; ++x) count += image.at(x, y) == color ? 1 : 0;
-  }
-  return count;
-}
-
-// The columns of each bar of `color`, left to right, found on the lowest row holding that colour (the row
-// every bar stands on), so the test does not depend on the layout's margins.
-std::vector<std::pair<int, int>> barColumns(const core::Image& image, const core::Color& color) {
-  for (int y = image.height - 1; y >= 0; --y) {
-    std::vector<std::pair<int, int>> runs;
-    for (int x = 0; x < image.width; ++x) {
-      if (image.at(x, y) != color) continue;
-      if (!runs.empty() && runs.back().second == x) {
-        runs.back().second = x + 1;
-      } else {
-        runs.emplace_back(x, x + 1);
-      }
-    }
-    if (!runs.empty()) return runs;
-  }
-  return {};
-}
-
 TEST(Pearson, IdenticalSeriesCorrelatePerfectly) {
   const std::vector<double> a{3, 1, 4, 1, 5, 9, 2, 6};
   EXPECT_DOUBLE_EQ(pearson(a, a), 1.0);
@@ -87,56 +60,60 @@ TEST(LoadChart, WidthGrowsWithProcessors) {
   const std::vector<double> four(4, 1.0);
   const std::vector<double> sixtyFour(64, 1.0);
   const std::vector<double> twoFiftySix(256, 1.0);
-  const core::Image small = loadChart(four, four);
-  const core::Image medium = loadChart(sixtyFour, sixtyFour);
-  const core::Image large = loadChart(twoFiftySix, twoFiftySix);
-  EXPECT_GE(small.width, 480);
-  EXPECT_GT(medium.width, small.width);
-  EXPECT_GT(large.width, medium.width);
-  EXPECT_GE(large.width, 24 * 256);
-  EXPECT_EQ(small.height, medium.height);
-  EXPECT_EQ(small.pixels.size(), static_cast<std::size_t>(small.width) * small.height);
+  const BarChart small = loadChart(four, four);
+  const BarChart medium = loadChart(sixtyFour, sixtyFour);
+  const BarChart large = loadChart(twoFiftySix, twoFiftySix);
+  EXPECT_GE(small.width(), 480);
+  EXPECT_GT(medium.width(), small.width());
+  EXPECT_GT(large.width(), medium.width());
+  EXPECT_GE(large.width(), 24 * 256);
+  EXPECT_EQ(small.height(), medium.height());
 }
 
-TEST(LoadChart, ShowsBothSeriesOnWhite) {
-  const std::vector<double> estimated{10, 20, 30, 25};
-  const std::vector<double> actual{1200, 1900, 3100, 2400};
-  const core::Image chart = loadChart(estimated, actual);
-  EXPECT_GT(countColor(chart, kEstimatedBarColor), 0);
-  EXPECT_GT(countColor(chart, kActualBarColor), 0);
-  EXPECT_EQ(chart.at(chart.width / 2, 1), core::Color(1.0)) << "background is white";
-  // One bar per processor of each colour along the baseline.
-  EXPECT_EQ(barColumns(chart, kEstimatedBarColor).size(), estimated.size());
-  EXPECT_EQ(barColumns(chart, kActualBarColor).size(), actual.size());
+TEST(LoadChart, NamesProcessorsAndBothSeriesNormalisedToTheirMeans) {
+  const std::vector<double> estimated{10, 20, 30, 20};
+  const std::vector<double> actual{1000, 1000, 3000, 3000};
+  const BarChart chart = loadChart(estimated, actual, "balls2, 128x128");
+  EXPECT_EQ(chart.categories, (std::vector<std::string>{"0", "1", "2", "3"}));
+  ASSERT_EQ(chart.series.size(), 2u);
+  EXPECT_NE(chart.series[0].name.find("estimated"), std::string::npos);
+  EXPECT_NE(chart.series[1].name.find("actual"), std::string::npos);
+  EXPECT_EQ(chart.series[0].values, (std::vector<double>{0.5, 1.0, 1.5, 1.0}));
+  EXPECT_EQ(chart.series[1].values, (std::vector<double>{0.5, 0.5, 1.5, 1.5}));
+  EXPECT_EQ(chart.x.label, "processor");
+  EXPECT_NE(chart.y.label.find("mean"), std::string::npos);
+  EXPECT_EQ(chart.caption, "balls2, 128x128");
+  const std::string svg = chartSvg(chart);
+  for (const std::string& word :
+       {chart.title, chart.x.label, chart.y.label, chart.series[0].name, chart.series[1].name, chart.caption})
+    EXPECT_NE(svg.find(">" + markupEscaped(word) + "</text>"), std::string::npos) << word;
 }
 
-TEST(LoadChart, TallerEstimateMeansMoreEstimatedPixelsInThatSlot) {
-  // Both series peak at processor 2 in each chart, so only processor 1's estimated bar changes.
+TEST(LoadChart, TallerEstimateMeansATallerBar) {
+  // Rasterised: processor 1's estimated bar holds more of the estimate's colour when its load is higher.
   const std::vector<double> actual{5, 5, 8, 5};
-  const std::vector<double> lower{4, 2, 8, 4};
-  const std::vector<double> higher{4, 6, 8, 4};
-  const core::Image a = loadChart(lower, actual);
-  const core::Image b = loadChart(higher, actual);
-  ASSERT_EQ(a.width, b.width);
-  const auto barsA = barColumns(a, kEstimatedBarColor);
-  const auto barsB = barColumns(b, kEstimatedBarColor);
-  ASSERT_EQ(barsA.size(), 4u);
-  ASSERT_EQ(barsA, barsB) << "same layout in both charts";
-  const auto [x0, x1] = barsA[1];
-  EXPECT_GT(countColor(b, kEstimatedBarColor, x0, x1), countColor(a, kEstimatedBarColor, x0, x1));
-  // The peak reaches the same height in both (normalised to the maximum).
-  const auto [p0, p1] = barsA[2];
-  EXPECT_EQ(countColor(b, kEstimatedBarColor, p0, p1), countColor(a, kEstimatedBarColor, p0, p1));
-  // And processor 1's actual bar is untouched.
-  EXPECT_EQ(countColor(a, kActualBarColor), countColor(b, kActualBarColor));
+  const core::Image low = chartImage(loadChart(std::vector<double>{4, 2, 8, 4}, actual));
+  const core::Image high = chartImage(loadChart(std::vector<double>{4, 6, 8, 4}, actual));
+  ASSERT_EQ(low.width, high.width);
+  const ChartColor blue = paletteColor(0);
+  const core::Color linear(core::srgb8ToLinear(std::uint8_t(std::lround(blue.r * 255))),
+                           core::srgb8ToLinear(std::uint8_t(std::lround(blue.g * 255))),
+                           core::srgb8ToLinear(std::uint8_t(std::lround(blue.b * 255))));
+  auto count = [&](const core::Image& image) {
+    int n = 0;
+    for (const core::Color& c : image.pixels) n += c == linear ? 1 : 0;
+    return n;
+  };
+  EXPECT_GT(count(low), 0);
+  EXPECT_LT(count(low), count(high));
 }
 
-TEST(LoadChart, ZeroLoadsDrawNoBarButDoNotFail) {
+TEST(LoadChart, ZeroLoadsDoNotFail) {
   const std::vector<double> zeros(5, 0.0);
   const std::vector<double> some{0, 1, 0, 2, 0};
-  const core::Image chart = loadChart(zeros, some);
-  EXPECT_EQ(barColumns(chart, kActualBarColor).size(), 2u);  // processors 1 and 3
-  EXPECT_EQ(barColumns(chart, kEstimatedBarColor).size(), 1u) << "only the legend square is blue";
+  const BarChart chart = loadChart(zeros, some);
+  EXPECT_EQ(chart.series[0].values, zeros);
+  EXPECT_NO_THROW(chartPng(chart));
 }
 
 TEST(LoadChart, RejectsBadSeries) {
@@ -148,17 +125,17 @@ TEST(LoadChart, RejectsBadSeries) {
   EXPECT_THROW(loadChart(two, std::vector<double>{1, std::nan("")}), std::invalid_argument);
 }
 
-TEST(LoadChart, WritesAsPng) {
+TEST(LoadChart, WritesAsPngOfTheChartsSize) {
   const std::vector<double> estimated{10, 20, 30, 25, 12, 18};
   const std::vector<double> actual{1200, 1900, 3100, 2400, 1000, 2000};
-  const core::Image chart = loadChart(estimated, actual);
+  const BarChart chart = loadChart(estimated, actual);
   const auto path = std::filesystem::temp_directory_path() /
                     ("raycube_load_chart_test_" + std::to_string(::getpid()) + ".png");
-  core::writePng(chart, path);
+  writeChart(chart, path);
   const core::Image back = core::readPng(path);
   std::filesystem::remove(path);
-  EXPECT_EQ(back.width, chart.width);
-  EXPECT_EQ(back.height, chart.height);
+  EXPECT_EQ(back.width, int(chart.width()));
+  EXPECT_EQ(back.height, int(chart.height()));
 }
 
 }  // namespace

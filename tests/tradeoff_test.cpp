@@ -51,8 +51,17 @@ TEST(Tradeoff, MoreAccurateSettingsComeCloserToTheReference) {
   for (std::string line; std::getline(in, line);) ++lines;
   EXPECT_EQ(lines, int(rows.size()) + 1);
   std::filesystem::remove(csv);
-  const core::Image plot = tradeoffPlot(rows);
-  EXPECT_GT(plot.width, 0);
+  const LineChart plot = tradeoffPlot(rows, "balls1, 24x24");
+  ASSERT_EQ(plot.series.size(), std::size(kKnobs));
+  for (std::size_t k = 0; k < plot.series.size(); ++k) {
+    EXPECT_EQ(plot.series[k].name, kKnobs[k]);
+    EXPECT_EQ(plot.series[k].x.size(), byKnob[kKnobs[k]].size());
+    EXPECT_EQ(plot.series[k].pointLabels.front(), byKnob[kKnobs[k]].front().setting);
+  }
+  EXPECT_EQ(plot.y.scale, AxisScale::Log);
+  const std::string svg = chartSvg(plot);
+  for (const char* knob : kKnobs) EXPECT_NE(svg.find(std::string(">") + knob + "</text>"), std::string::npos);
+  EXPECT_NE(svg.find("RMSE"), std::string::npos);
   EXPECT_NE(tradeoffTable(rows).find("min-weight"), std::string::npos);
 }
 
