@@ -46,4 +46,11 @@ inline constexpr double kBoxPaddingRelativeOf =
 template <class Real>
 inline constexpr int kSafeExponentOf = kIsFloat<Real> ? 8 : 64;
 
+// Largest ratio, as a power of two, between the scene's largest coordinate and its smallest object that
+// the precision can render: once the largest coordinate is rescaled to about 1, products of three of the
+// smallest object's lengths must stay normal (float's smallest normal is 2^-126, double's 2^-1022; a third
+// of each, less a margin). Beyond it every object but the farthest underflows to nothing.
+template <class Real>
+inline constexpr int kMaxSpanExponentOf = kIsFloat<Real> ? 40 : 330;
+
 }  // namespace raycube::core

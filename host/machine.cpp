@@ -1,7 +1,5 @@
 #include "host/machine.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,6 +11,7 @@
 #include "host/bsp_partition.h"
 #include "host/hypercube_mapping.h"
 #include "host/jitter_transport.h"
+#include "host/machine_checks.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
 #include "host/shared_memory_transport.h"
@@ -163,16 +162,7 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   const auto start = Clock::now();
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
-  const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
-  const bool bspFits =
-      (long long)machine.rows * machine.columns <= (long long)view.samplesX() * view.samplesY();
-  if (machine.columns < 1 || machine.rows < 1 || !(machine.balance == Balance::Bsp ? bspFits : gridFits))
-    throw std::invalid_argument(
-        fmt::format("--procs {}x{}: every processor needs at least one sample (and, on a "
-                    "uniform grid, one sample row and column) of the {}x{} sample grid",
-                    machine.rows, machine.columns, view.samplesX(), view.samplesY()));
-  if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
-  if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
+  requireMachineFits(machine, view);
   const core::Whitted shading(scene, settings.shading);
   const node::ScreenLines lines(view);
   // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
