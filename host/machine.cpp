@@ -178,7 +178,8 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   std::vector<node::SampleRect> areas;
   for (int p = 0; p < regions.processors(); ++p) areas.push_back(regions.areaOf(p));
   std::vector<node::EyeBox> boxes;
-  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
+  const double sceneExtent = 2 * scene.largestCoordinate();
+  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
   const node::MachineContext context{scene, view, shading, lines, regions, boxes};
   SharedMemoryMachine<Real> interconnect(regions, machine.queueCapacity);
   std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, regions, lines, boxes, machine);

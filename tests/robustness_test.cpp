@@ -97,6 +97,40 @@ TEST(Robustness, TooManyLightsAreRefusedAtTheirLine) {
   EXPECT_THROW(renderMachine(scene, tiny(), smallMachine()), std::invalid_argument);
 }
 
+// Class 4: overlapping polygons in the plane z = 0 (flat boxes at 0) tie exactly as in the reference, in
+// both precisions, at the files' own resolution (16x16: the fuzz replay renders them at 8x8).
+TEST(Robustness, CoplanarPolygonsAtZeroTieAsInTheReference) {
+  for (const char* file : {"class4_coplanar_at_zero_a.nff", "class4_coplanar_at_zero_b.nff"}) {
+    const core::Scene scene =
+        core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "tests/fuzz/regressions" / file);
+    for (const core::Precision precision : {core::Precision::Double, core::Precision::Float}) {
+      SCOPED_TRACE(std::string(file) + " in " + core::nameOf(precision));
+      RenderSettings settings = tiny(precision);
+      settings.width = scene.camera.width;
+      settings.height = scene.camera.height;
+      expectEveryModeMatchesReference(scene, settings);
+    }
+  }
+}
+
+// Class 5: the eye inside a sphere of radius 6e7 around unit-size features: float hits on the small objects
+// lie units off them (t ~ 6e7 has an ulp of 4), and the machine's cells must still hold them.
+TEST(Robustness, FloatMachineAgreesInsideAHugeSphere) {
+  const core::Scene scene = core::readNff(std::filesystem::path(RAYCUBE_SOURCE_DIR) /
+                                          "tests/fuzz/regressions/class5_float_huge_sphere.nff");
+  RenderSettings settings = tiny(core::Precision::Float);
+  settings.width = settings.height = 16;
+  const core::Image reference = renderReference(scene, settings).image;
+  MachineSettings messages = smallMachine();
+  messages.lightRays = node::LightRayMode::Messages;
+  for (const MachineSettings& machine : {MachineSettings{}, messages})
+    EXPECT_TRUE(core::bitIdentical(renderMachine(scene, settings, machine).image, reference));
+  // Past float's bits, the scene is refused with advice rather than rendered differently by each mode.
+  core::Scene wider = scene;
+  std::get<core::Sphere>(wider.objects[0].shape).radius = 1e9;
+  EXPECT_THROW(renderReference(wider, settings), std::invalid_argument);
+}
+
 // Class 6: an object so far away that rescaling would crush every other one to nothing is named, not drawn
 // as a black image. Double holds the float case, and the error says so.
 TEST(Robustness, AFarAwayObjectIsNamedInsteadOfErasingThePicture) {
