@@ -27,10 +27,13 @@ struct BasicBox {
   }
   Vec3Of<Real> center() const { return Real(0.5) * (lo + hi); }
   Vec3Of<Real> extent() const { return hi - lo; }
-  // Grown by `relative` of its size and magnitude: conservative against rounding.
+  // Grown on every side by `relative` of its largest extent plus its largest coordinate magnitude, over all
+  // three axes: conservative against rounding, which in one axis depends on the coordinates of the others.
+  // A flat box at 0 (a polygon in the plane z = 0) thus gets a margin across its plane too: without it the
+  // slab test's entry could round past the polygon's own hit and the traversal drop a tied object.
   BasicBox padded(double relative) const {
-    const Vec3Of<Real> magnitude = glm::max(glm::abs(lo), glm::abs(hi));
-    const Vec3Of<Real> pad = Real(relative) * (extent() + magnitude);
+    const Vec3Of<Real> scale = extent() + glm::max(glm::abs(lo), glm::abs(hi));
+    const Real pad = Real(relative) * std::max({scale.x, scale.y, scale.z});
     return BasicBox{lo - pad, hi + pad};
   }
   // The box in another precision, rounded outwards so that it still holds everything this one holds.

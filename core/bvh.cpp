@@ -10,6 +10,11 @@ namespace raycube::core {
 
 namespace {
 constexpr std::uint32_t kLeafSize = 1;
+// A traversal holds at most one pending sibling per level plus the node it visits, so bounding the depth
+// bounds its stack: degenerate scenes (each split peeling off one object) end in one larger leaf instead of
+// overflowing it.
+constexpr int kMaxDepth = 60;
+constexpr int kStackSize = kMaxDepth + 2;
 }
 
 namespace {
@@ -30,7 +35,7 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector
   std::vector<Box> boxes(scene.objects.size());
   for (std::uint32_t o : order_) boxes[o] = boundsOf(scene.objects[o], kBoxPaddingRelativeOf<Real>);
   nodes_.reserve(2 * order_.size() + 1);
-  if (!order_.empty()) build(boxes, 0, std::uint32_t(order_.size()));
+  if (!order_.empty()) build(boxes, 0, std::uint32_t(order_.size()), 0);
 }
 
 namespace {
@@ -48,7 +53,8 @@ constexpr double kTraversalCost = 1.0;  // relative to one ray-object test
 
 // Binned surface-area heuristic over object centroids (Wald 2007); a leaf when no split pays.
 template <class Real>
-std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end) {
+std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end,
+                                    int depth) {
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   Box bounds, centroids;
@@ -60,7 +66,7 @@ std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin
   const std::uint32_t count = end - begin;
   int bestAxis = -1, bestBin = 0;
   double bestCost = double(count);  // cost of a leaf, in object tests
-  for (int axis = 0; axis < 3 && count > kLeafSize; ++axis) {
+  for (int axis = 0; axis < 3 && count > kLeafSize && depth < kMaxDepth; ++axis) {
     const double lo = centroids.lo[axis], width = centroids.hi[axis] - lo;
     if (!(width > 0)) continue;
     Box binBox[kBins];
@@ -105,8 +111,8 @@ std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin
     return std::min(kBins - 1, int(kBins * (boxes[o].center()[bestAxis] - lo) / width)) <= bestBin;
   });
   const std::uint32_t mid = std::uint32_t(midIt - order_.begin());
-  build(boxes, begin, mid);
-  const std::uint32_t right = build(boxes, mid, end);
+  build(boxes, begin, mid, depth + 1);
+  const std::uint32_t right = build(boxes, mid, end, depth + 1);
   nodes_[index].first = right;
   nodes_[index].axis = std::uint8_t(bestAxis);
   return index;
@@ -124,7 +130,7 @@ void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, const Real& tLimit, Tra
     std::uint32_t node;
     Real tEnter;
   };
-  Entry stack[64];
+  Entry stack[kStackSize];
   int top = 0;
   Real tEnter;
   ++counters.boxTests;

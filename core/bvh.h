@@ -30,7 +30,7 @@ class BasicBvh {
     std::uint32_t count = 0;  // leaf: number of objects; inner: 0 (left child follows the node)
     std::uint8_t axis = 0;
   };
-  std::uint32_t build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end);
+  std::uint32_t build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end, int depth);
   template <class Visit>
   void traverse(const BasicRay<Real>& ray, const Real& tLimit, TraceCounters& counters, Visit&& visit) const;
 

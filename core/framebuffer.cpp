@@ -8,11 +8,11 @@ namespace raycube::core {
 namespace {
 
 // Each contribution is rounded on its own; out-of-range values saturate instead of overflowing.
-std::int64_t toFixed(double value) {
-  constexpr double kLimit = 0x1p62;
+Framebuffer::Fixed toFixed(double value) {
+  constexpr double kLimit = Framebuffer::kContributionLimit * Framebuffer::kFixedScale;
   const double scaled = value * Framebuffer::kFixedScale;
-  if (scaled >= kLimit) return std::int64_t(kLimit);
-  if (scaled <= -kLimit) return -std::int64_t(kLimit);
+  if (scaled >= kLimit) return Framebuffer::Fixed(std::int64_t(kLimit));
+  if (scaled <= -kLimit) return -Framebuffer::Fixed(std::int64_t(kLimit));
   return std::llround(scaled);
 }
 
@@ -22,7 +22,7 @@ Framebuffer::Framebuffer(int samplesX, int samplesY)
     : samplesX_(samplesX), samplesY_(samplesY), fixed_(std::size_t(samplesX) * samplesY * 3, 0) {}
 
 void Framebuffer::add(const Contribution& c) {
-  std::int64_t* slot = &fixed_[std::size_t(c.sample) * 3];
+  Fixed* slot = &fixed_[std::size_t(c.sample) * 3];
   for (int ch = 0; ch < 3; ++ch)
     if (std::isfinite(c.value[ch])) slot[ch] += toFixed(c.value[ch]);
 }
@@ -44,7 +44,7 @@ Image Framebuffer::resolve(const View& view) const {
       for (int ch = 0; ch < 3; ++ch) {
         if (corners) {
           // Sum the four corners in fixed point first, so the mean is exact up to one rounding.
-          const std::int64_t sum =
+          const Fixed sum =
               fixed_[view.sampleIndex(x, y) * 3 + ch] + fixed_[view.sampleIndex(x + 1, y) * 3 + ch] +
               fixed_[view.sampleIndex(x, y + 1) * 3 + ch] + fixed_[view.sampleIndex(x + 1, y + 1) * 3 + ch];
           c[ch] = double(sum) / (4 * kFixedScale);

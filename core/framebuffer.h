@@ -1,6 +1,6 @@
 #pragma once
 // The host's frame buffer (Priol & Bouatouch 3.4, 3.5.1): contributions arrive in any order from any
-// number of processors, so each is rounded once to 64-bit fixed point and integer sums make the image
+// number of processors, so each is rounded once to fixed point and integer sums make the image
 // independent of arrival order, thread count and partition, bit for bit.
 #include <cstdint>
 #include <vector>
@@ -15,8 +15,12 @@ struct Image;
 
 class Framebuffer final : public ContributionSink {
  public:
-  // 2^-40 resolution (~1e-12) and headroom up to 2^23 per channel and sample.
+  // 2^-40 resolution (~1e-12); one contribution saturates at 2^22 (kContributionLimit). Sums are kept in
+  // 128 bits: 2^65 saturated contributions fit in a slot, so no sum ever wraps and, integer addition being
+  // associative, saturation does not depend on arrival order (a saturating 64-bit add would).
   static constexpr double kFixedScale = 0x1p40;
+  static constexpr double kContributionLimit = 0x1p22;
+  using Fixed = __int128;
 
   Framebuffer(int samplesX, int samplesY);
 
@@ -35,7 +39,7 @@ class Framebuffer final : public ContributionSink {
   double sampleChannel(std::size_t sample, int channel) const;
 
   int samplesX_, samplesY_;
-  std::vector<std::int64_t> fixed_;  // 3 channels per sample
+  std::vector<Fixed> fixed_;  // 3 channels per sample
 };
 
 }  // namespace raycube::core

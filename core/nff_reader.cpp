@@ -15,6 +15,8 @@
 #include <system_error>
 #include <vector>
 
+#include "core/ray.h"
+
 namespace raycube::core {
 
 namespace {
@@ -26,6 +28,17 @@ constexpr double kMinSine = 1e-9;
 
 // Longest token echoed back in an error message; a mutated file may hold a megabyte on one line.
 constexpr std::size_t kMaxEchoedToken = 32;
+
+// Sine of the angle between a and b, each scaled by its largest component first so that neither huge nor
+// tiny (but finite, non-zero) vectors overflow or underflow in the lengths; 0 when either is zero.
+double sineBetween(Vec3 a, Vec3 b) {
+  const double largestA = std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)});
+  const double largestB = std::max({std::abs(b.x), std::abs(b.y), std::abs(b.z)});
+  if (!(largestA > 0 && largestB > 0)) return 0;
+  a /= largestA;
+  b /= largestB;
+  return glm::length(glm::cross(a, b)) / (glm::length(a) * glm::length(b));
+}
 
 std::string formatMessage(std::string_view source, int line, int column, std::string_view message) {
   if (line <= 0) return fmt::format("{}: {}", source, message);
@@ -85,6 +98,7 @@ class NffParser {
   Scene parse() {
     Scene scene;
     scene.name = std::filesystem::path(std::string(source_)).stem().string();
+    scene.source = std::string(source_);
     while (std::optional<Line> line = nextLine()) {
       const std::string_view keyword = line->tokens[0].text;
       if (keyword == "v") {
@@ -100,6 +114,7 @@ class NffParser {
         requireObjectContext(*line, scene);
         Object object;
         object.material = static_cast<std::uint32_t>(scene.materials.size() - 1);
+        object.line = line->number;
         if (keyword == "s") {
           readSphere(*line, object);
         } else if (keyword == "c") {
@@ -250,6 +265,7 @@ class NffParser {
     }
     expectEndOfLine(v, 1, "'v' (the view parameters go on the next six lines)");
     viewLine_ = v.number;
+    scene.camera.line = v.number;
     const std::string context = fmt::format("the 'v' block started at line {}", v.number);
     Camera& camera = scene.camera;
 
@@ -263,10 +279,7 @@ class NffParser {
     }
     const Line upLine = expectKeywordLine("up", context);
     camera.up = vec(numbers<3>(upLine, 1, "'up' (x y z)").data());
-    const Vec3 view = camera.at - camera.from;
-    const double sine =
-        glm::length(glm::cross(view, camera.up)) / (glm::length(view) * glm::length(camera.up));
-    if (!(sine > kMinSine)) {
+    if (!(sineBetween(camera.at - camera.from, camera.up) > kMinSine)) {
       fail(upLine.number, upLine.tokens[1].column,
            "expected an 'up' vector that is non-zero and not parallel to the view direction (at - from)");
     }
@@ -305,7 +318,13 @@ class NffParser {
   }
 
   void readLight(const Line& line, Scene& scene) {
+    if (scene.lights.size() >= kMaxLights) {
+      fail(line.number, line.tokens[0].column,
+           fmt::format("expected at most {} lights (a ray names its light in 16 bits), found one more",
+                       kMaxLights));
+    }
     Light light;
+    light.line = line.number;
     if (line.tokens.size() == 4) {
       light.position = vec(numbers<3>(line, 1, "'l' (light x y z [r g b])").data());
     } else if (line.tokens.size() == 7) {
@@ -433,10 +452,7 @@ class NffParser {
   }
 
   void requirePlanarNormal(const Line& line, const std::vector<Vec3>& vertices, std::string_view what) const {
-    const Vec3 e1 = vertices[1] - vertices[0];
-    const Vec3 e2 = vertices[2] - vertices[0];
-    const double sine = glm::length(glm::cross(e1, e2)) / (glm::length(e1) * glm::length(e2));
-    if (!(sine > kMinSine)) {
+    if (!(sineBetween(vertices[1] - vertices[0], vertices[2] - vertices[0]) > kMinSine)) {
       fail(line.number, line.tokens[0].column,
            fmt::format(
                "expected {} whose first three vertices span a plane (they define its normal), found them "
@@ -487,6 +503,21 @@ class NffParser {
   int viewLine_ = 0;      // line of the "v" block, 0 before it
 };
 
+const char* describe(std::filesystem::file_type type) {
+  switch (type) {
+    case std::filesystem::file_type::character:
+      return "a character device";
+    case std::filesystem::file_type::block:
+      return "a block device";
+    case std::filesystem::file_type::fifo:
+      return "a FIFO (named pipe)";
+    case std::filesystem::file_type::socket:
+      return "a socket";
+    default:
+      return "something that is not a regular file";
+  }
+}
+
 }  // namespace
 
 SceneError::SceneError(std::string_view source, int line, int column, std::string_view message)
@@ -504,9 +535,15 @@ Scene parseNff(std::string_view text, std::string_view sourceName) {
 
 Scene readNff(const std::filesystem::path& path) {
   const std::string source = path.string();
+  // Only a regular file has an end: a device (/dev/zero) would be read until memory runs out, and opening
+  // a FIFO with no writer blocks forever.
   std::error_code error;
-  if (std::filesystem::is_directory(path, error))
+  const std::filesystem::file_type type = std::filesystem::status(path, error).type();
+  if (type == std::filesystem::file_type::directory)
     throw SceneError(source, "expected a scene file, found a directory");
+  if (type != std::filesystem::file_type::regular && type != std::filesystem::file_type::not_found &&
+      type != std::filesystem::file_type::none)
+    throw SceneError(source, fmt::format("expected a regular scene file, found {}", describe(type)));
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw SceneError(source, fmt::format("cannot open the scene file: {}",

@@ -46,4 +46,13 @@ inline constexpr double kBoxPaddingRelativeOf =
 template <class Real>
 inline constexpr int kSafeExponentOf = kIsFloat<Real> ? 8 : 64;
 
+// Largest ratio, as a power of two, between the scene's largest coordinate and its smallest object that
+// the precision can render. Double: once the largest coordinate is rescaled to about 1, products of three
+// of the smallest object's lengths must stay normal (2^-1022; a third of it, less a margin); beyond, every
+// object but the farthest underflows to nothing. Float runs out of bits first: a float t far from its
+// origin cannot place a hit on a small object within that object's cells (kFloatHitErrorRelative), and the
+// machine and the reference part ways from about 2^30 (measured: a unit sphere inside one of radius 1e9).
+template <class Real>
+inline constexpr int kMaxSpanExponentOf = kIsFloat<Real> ? 28 : 330;
+
 }  // namespace raycube::core

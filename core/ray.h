@@ -2,6 +2,7 @@
 // A ray of the ray tree, carrying everything the paper's `rayon` message carries (section 3.5.2):
 // the original origin and direction keep the ray's identity wherever it travels. Ray state is in the
 // precision the user chose (Real = float or double); Ray and TracedRay are the double ones.
+#include <cstddef>
 #include <cstdint>
 
 #include "core/vec.h"
@@ -38,9 +39,12 @@ struct BasicTracedRay {
   std::uint32_t sample = 0;
   std::uint8_t depth = 1;  // the eye ray has depth 1 (SPD rule 7)
   RayKind kind = RayKind::Eye;
-  std::uint16_t light = 0;  // shadow rays: which light they go to
+  std::uint16_t light = 0;  // shadow rays: which light they go to (kMaxLights keeps it exact)
 };
 using TracedRay = BasicTracedRay<double>;
+
+// A ray names its light in 16 bits (the message stays 128 bytes): scenes with more lights are refused.
+inline constexpr std::size_t kMaxLights = std::size_t(1) << 16;
 
 // A piece of a sample's colour: the host adds these up in any order (section 3.4), in double whatever the
 // precision of the rays.

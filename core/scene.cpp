@@ -1,9 +1,13 @@
 #include "core/scene.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/overloaded.h"
+#include "core/ray.h"
 
 namespace raycube::core {
 
@@ -33,23 +37,98 @@ double largest(const std::vector<Vec3>& points) {
   return m;
 }
 
+double largestCoordinateOf(const Object& object) {
+  return std::visit(Overloaded{[](const Sphere& s) { return largest(s.center) + std::abs(s.radius); },
+                               [](const Cone& c) {
+                                 return std::max(largest(c.base) + std::abs(c.baseRadius),
+                                                 largest(c.apex) + std::abs(c.apexRadius));
+                               },
+                               [](const Polygon& p) { return largest(p.vertices); },
+                               [](const Patch& p) { return largest(p.vertices); }},
+                    object.shape);
+}
+
+// Largest side of the object's bounding box: its scale.
+double sizeOf(const Object& object) {
+  const auto sideOf = [](const std::vector<Vec3>& points) {
+    Vec3 lo = points.front(), hi = points.front();
+    for (const Vec3& p : points) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    return largest(hi - lo);
+  };
+  return std::visit(Overloaded{[](const Sphere& s) { return 2 * std::abs(s.radius); },
+                               [&](const Cone& c) {
+                                 return std::max({largest(c.apex - c.base), 2 * std::abs(c.baseRadius),
+                                                  2 * std::abs(c.apexRadius)});
+                               },
+                               [&](const Polygon& p) { return sideOf(p.vertices); },
+                               [&](const Patch& p) { return sideOf(p.vertices); }},
+                    object.shape);
+}
+
+const char* keywordOf(const Object& object) {
+  return std::visit(Overloaded{[](const Sphere&) { return "sphere 's'"; }, [](const Cone&) { return "cone 'c'"; },
+                               [](const Polygon&) { return "polygon 'p'"; },
+                               [](const Patch&) { return "patch 'pp'"; }},
+                    object.shape);
+}
+
+// "scene.nff:12: the sphere 's'" or "object 12 (sphere 's')" for scenes built in code.
+std::string placeOf(const Scene& scene, int line, std::size_t index, const std::string& what) {
+  if (line > 0 && !scene.source.empty()) return fmt::format("{}:{}: the {}", scene.source, line, what);
+  return fmt::format("{} {}", what, index);
+}
+
 }  // namespace
 
 double Scene::largestCoordinate() const {
   double m = std::max({largest(camera.from), largest(camera.at), std::abs(camera.hither)});
   for (const Light& light : lights) m = std::max(m, largest(light.position));
-  for (const Object& object : objects)
-    m = std::max(m,
-                 std::visit(Overloaded{[](const Sphere& s) { return largest(s.center) + std::abs(s.radius); },
-                                       [](const Cone& c) {
-                                         return std::max(largest(c.base) + std::abs(c.baseRadius),
-                                                         largest(c.apex) + std::abs(c.apexRadius));
-                                       },
-                                       [](const Polygon& p) { return largest(p.vertices); },
-                                       [](const Patch& p) { return largest(p.vertices); }},
-                            object.shape));
+  for (const Object& object : objects) m = std::max(m, largestCoordinateOf(object));
   return m;
 }
+
+void requireRenderable(const Scene& scene, Precision precision) {
+  if (scene.lights.size() > kMaxLights)
+    throw std::invalid_argument(fmt::format(
+        "{}: {} lights; a ray names its light in 16 bits, so at most {} are supported",
+        scene.source.empty() ? scene.name : scene.source, scene.lights.size(), kMaxLights));
+  if (scene.objects.empty()) return;
+  // The element that sets the scale, and the smallest object, which the rescaling would crush.
+  std::string farthest = placeOf(scene, scene.camera.line, 0, "camera ('v' block)");
+  double largestCoordinate = std::max({largest(scene.camera.from), largest(scene.camera.at)});
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    if (largest(scene.lights[i].position) > largestCoordinate) {
+      largestCoordinate = largest(scene.lights[i].position);
+      farthest = placeOf(scene, scene.lights[i].line, i, "light 'l'");
+    }
+  std::size_t smallest = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& object = scene.objects[i];
+    if (largestCoordinateOf(object) > largestCoordinate) {
+      largestCoordinate = largestCoordinateOf(object);
+      farthest = placeOf(scene, object.line, i, keywordOf(object));
+    }
+    if (sizeOf(object) < sizeOf(scene.objects[smallest])) smallest = i;
+  }
+  const double span = largestCoordinate / sizeOf(scene.objects[smallest]);
+  const auto spanExponent = [](Precision p) {
+    return withPrecision(p, []<class Real>() { return kMaxSpanExponentOf<Real>; });
+  };
+  if (!(std::isfinite(span) && std::ilogb(span) <= spanExponent(precision))) {
+    const bool doubleHolds = std::isfinite(span) && std::ilogb(span) <= spanExponent(Precision::Double);
+    throw std::invalid_argument(fmt::format(
+        "{} reaches {:.3g} from the origin, {:.3g} times the size of the smallest object ({}): {} arithmetic "
+        "holds a ratio of at most 2^{}, beyond which every other object would vanish; {}",
+        farthest, largestCoordinate, span,
+        placeOf(scene, scene.objects[smallest].line, smallest, keywordOf(scene.objects[smallest])),
+        nameOf(precision), spanExponent(precision),
+        doubleHolds ? "render with --precision double" : "move or remove it"));
+  }
+}
+
 
 Scene scaledBy(Scene scene, double factor) {
   scene.camera.from *= factor;

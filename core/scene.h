@@ -21,6 +21,7 @@ struct Camera {
   double hither = 0;
   int width = 512;
   int height = 512;
+  int line = 0;  // of the NFF "v" line; 0 for scenes built in code
 };
 
 // NFF "l": hasColor is false when the file gives no colour; intensities then follow SPD's sqrt(L)/(2L).
@@ -28,6 +29,7 @@ struct Light {
   Vec3 position{0, 0, 0};
   Color color{1, 1, 1};
   bool hasColor = false;
+  int line = 0;  // NFF line; 0 for scenes built in code
 };
 
 // NFF "f": colour, Kd, Ks, Phong exponent, transmittance T and index of refraction.
@@ -72,6 +74,7 @@ struct Object {
   Shape shape;
   std::uint32_t material = 0;
   bool insideVisible = false;  // negative radius in NFF
+  int line = 0;                // NFF line of its keyword; 0 for scenes built in code
 };
 
 // What a scene uses, so a renderer never pays for a feature it does not need.
@@ -87,6 +90,7 @@ struct SceneFeatures {
 
 struct Scene {
   std::string name;
+  std::string source;  // the file it was read from, for messages; empty for scenes built in code
   Camera camera;
   Color background{0, 0, 0};
   std::vector<Light> lights;
@@ -107,5 +111,11 @@ Scene scaledBy(Scene scene, double factor);
 // 1e9 and 1e-13 (normals overflow, triangle tests underflow), double's from about 1e100. Whitted shading
 // has no distance term, so the picture does not change; nullopt when the scene is fine as it is.
 std::optional<Scene> rescaledFor(const Scene& scene, Precision precision);
+
+// Throws std::invalid_argument, naming the element at fault (file:line when the scene was read from one),
+// when no render in `precision` could be trusted: more lights than a ray can index (kMaxLights), or a
+// dynamic range (largest coordinate over smallest object) that rescaling cannot bring into the precision's
+// range (kMaxSpanExponentOf), where everything but the farthest element would vanish.
+void requireRenderable(const Scene& scene, Precision precision);
 
 }  // namespace raycube::core

@@ -20,6 +20,12 @@ inline constexpr double kFloatBoxPaddingRelative = 0x1p-16;
 // structures serve both precisions, so the margin is float's.
 inline constexpr double kCellMarginRelative = 0x1p-16;
 
+// A float ray's t carries 24 bits however near its hit: one reflected from a sphere of radius 6e7 meets a
+// unit-size object with t ~ 6e7, whose ulp is 4, so its hit may lie units away from the object, outside
+// the object's cells. Cells therefore also widen every object by this fraction (2^2 float ulps) of the
+// longest segment in the scene (twice its largest coordinate); for scenes of one scale it is negligible.
+inline constexpr double kFloatHitErrorRelative = 0x1p-22;
+
 // Every face of a region is a plane through the eye, so a ray that (nearly) passes through the eye meets
 // them all at the apex, where z = 0 up to rounding. Crossings with z below this fraction of the ray's
 // depth scale are such apex artifacts, not crossings in front of the eye.

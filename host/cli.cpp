@@ -3,9 +3,17 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <string_view>
+#include <system_error>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -17,6 +25,7 @@
 #include "host/chart.h"
 #include "host/load_chart.h"
 #include "host/machine.h"
+#include "host/machine_checks.h"
 #include "host/machine_report.h"
 #include "host/progress.h"
 #include "host/run_report.h"
@@ -66,7 +75,7 @@ struct RenderCommand {
   std::string output;
   std::string statsPath;
   bool quiet = false;
-  std::string procs = "4x4";
+  std::string procs;  // empty: 4x4, or what fits a smaller image
   std::string overlayPath;
   std::string loadChartPath;
   std::string reportPath;
@@ -93,15 +102,60 @@ std::optional<EmulatedPlatform> emulatedPlatform(const RenderCommand& cmd) {
   return platform;
 }
 
-// "AxB" with both in [1, limit]; what names the option in the error.
+// "AxB" with both in [1, limit]; what names the option in the error. Digits only: a number that does not
+// fit is an error, never wrapped into range.
 std::pair<int, int> parsePair(const std::string& text, const char* what, const char* form, int limit) {
-  int a = 0, b = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a < 1 ||
-      b < 1 || a > limit || b > limit)
-    throw CLI::ValidationError(
+  const auto fail = [&] {
+    return CLI::ValidationError(
         what, fmt::format("expected {} with both between 1 and {}, got '{}'", form, limit, text));
-  return {a, b};
+  };
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) throw fail();
+  const auto side = [&](std::string_view digits) {
+    long long value = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || value < 1 ||
+        value > limit)
+      throw fail();
+    return int(value);
+  };
+  const std::string_view all(text);
+  return {side(all.substr(0, x)), side(all.substr(x + 1))};
+}
+
+// CLI::Range lets NaN through (every comparison with it is false).
+const CLI::Validator kNotNaN(
+    [](const std::string& text) {
+      double value = 0;
+      if (CLI::detail::lexical_cast(text, value) && std::isnan(value)) return std::string("NaN is not a number");
+      return std::string();
+    },
+    "", "NOT_NAN");
+
+// Output files are checked before a render that may take minutes: the extension, and that the file can be
+// created (its folder is created as writing would). A file that did not exist is removed again.
+void requireWritable(const std::string& path, const char* option, bool image) {
+  if (path.empty()) return;
+  const std::filesystem::path p(path);
+  if (image) {
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext != ".exr" && ext != ".png")
+      throw CLI::ValidationError(
+          option, fmt::format("'{}': unknown image extension '{}' (use .exr or .png)", path, p.extension().string()));
+  }
+  std::error_code error;
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), error);
+  const bool existed = std::filesystem::exists(p, error);
+  if (std::filesystem::is_directory(p, error))
+    throw CLI::ValidationError(option, fmt::format("'{}' is a directory", path));
+  {
+    std::ofstream probe(p, std::ios::app);
+    if (!probe)
+      throw CLI::ValidationError(option, fmt::format("cannot write '{}': {}", path,
+                                                     std::error_code(errno, std::generic_category()).message()));
+  }
+  if (!existed) std::filesystem::remove(p, error);
 }
 
 core::Scene loadScene(const RenderCommand& cmd) {
@@ -121,7 +175,12 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
       machine.lightRays = kLightRays.at(cmd.lightRays);
       machine.balance = kBalances.at(cmd.balance);
       machine.loadMetric = kLoadMetrics.at(cmd.loadMetric);
-      std::tie(machine.rows, machine.columns) = parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
+      // Without --procs, the default grid shrinks to fit a small image rather than fail on an option the
+      // user never gave.
+      std::tie(machine.rows, machine.columns) =
+          cmd.procs.empty() ? defaultProcessorGrid(core::View(scene.camera, settings.width, settings.height,
+                                                              settings.sampling, settings.shading.raysPerSample))
+                            : parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
       machine.emulate = emulatedPlatform(cmd);
       report.emplace();
       return renderMachine(scene, settings, machine, &*report);
@@ -256,6 +315,16 @@ std::vector<std::string> writeExtras(const RenderCommand& cmd, const core::Scene
 }
 
 int runRender(const RenderCommand& cmd) {
+  // Everything that can be checked before the scene is read is: a typo fails at once, not after a render.
+  const bool machineMode = kModes.at(cmd.mode) == RenderMode::Machine;
+  if (!machineMode && !cmd.overlayPath.empty()) throw std::invalid_argument("--overlay needs --mode machine");
+  if (!machineMode && !cmd.loadChartPath.empty())
+    throw std::invalid_argument("--load-chart needs --mode machine");
+  if (!cmd.procs.empty()) parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
+  requireWritable(cmd.output, "--output", true);
+  requireWritable(cmd.statsPath, "--stats", false);
+  requireWritable(cmd.overlayPath, "--overlay", true);
+  requireWritable(cmd.loadChartPath, "--load-chart", true);
   std::optional<MachineReport> report;
   std::optional<RenderResult> result;
   std::optional<core::Scene> scene;
@@ -300,7 +369,7 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
       ->add_option(
           "--min-weight", cmd.minWeight,
           "Adaptive depth: spawn no reflected/refracted ray whose Ks/Kt weight is below this (0 = off)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(kNotNaN & CLI::Range(0.0, 1.0));
   render
       ->add_option("--precision", cmd.precision,
                    "float | double: ray state and intersection arithmetic (and so the ray message size)")
@@ -310,7 +379,8 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
       ->transform(CLI::IsMember(keysOf(kSamplings), CLI::ignore_case));
   if (procsAsGrid) render->add_option("--procs", cmd.procs,
-                     "Logical processors as RxC (rows x columns); with --balance bsp only R*C counts");
+                     "Logical processors as RxC (rows x columns), default 4x4; with --balance bsp only R*C "
+                     "counts (at most 1024)");
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
   render
@@ -490,7 +560,7 @@ void addCompareCommand(CLI::App& app, CompareCommand& cmd) {
   compare->add_option("first", cmd.first, "First image")->required()->check(CLI::ExistingFile);
   compare->add_option("second", cmd.second, "Second image")->required()->check(CLI::ExistingFile);
   compare->add_option("--diff", cmd.diffPath, "Write |first - second| (times --gain) to this EXR or PNG");
-  compare->add_option("--gain", cmd.gain, "Scale of the difference image")->check(CLI::Range(0.0, 1e12));
+  compare->add_option("--gain", cmd.gain, "Scale of the difference image")->check(kNotNaN & CLI::Range(0.0, 1e12));
 }
 
 }  // namespace

@@ -28,8 +28,6 @@ constexpr long kAnnealingMovesPerVertex = 1000;
 constexpr double kHotTemperature = 1.0;
 constexpr double kColdTemperature = 0.05;
 constexpr std::uint32_t kAnnealingSeed = 1988;
-// The placement keeps a vertices x nodes table of ints: 4 MB at this size, far past any machine we emulate.
-constexpr int kMaxMappedVertices = 1024;
 constexpr std::uint32_t kUnplaced = std::numeric_limits<std::uint32_t>::max();
 
 void requirePositiveGrid(int rows, int columns, const char* who) {

@@ -39,6 +39,9 @@ int hypercubeDimension(int processors);
 // (3 x 5 needs 5, not 4). Throws std::invalid_argument for non-positive sizes or more than 31 address bits.
 std::vector<std::uint32_t> grayCodeGridMapping(int rows, int columns);
 
+// The placement keeps a vertices x nodes table of ints: 4 MB at this size, far past any machine we emulate.
+inline constexpr int kMaxMappedVertices = 1024;
+
 // Heuristic embedding of any adjacency graph (e.g. a BSP's, whose regions are not a grid) into the smallest
 // cube, d = hypercubeDimension(vertices): injective, every node < 2^d, deterministic. Greedy placement
 // followed by swap/move improvement; meant for the machine's sizes (up to a few hundred regions).

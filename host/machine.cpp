@@ -1,7 +1,5 @@
 #include "host/machine.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,6 +10,7 @@
 #include "host/bsp_partition.h"
 #include "host/hypercube_mapping.h"
 #include "host/machine_engine.h"
+#include "host/machine_checks.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
 
@@ -153,20 +152,6 @@ void mapOntoHypercube(const node::RegionMap& regions, const MachineSettings& mac
   out.hypercubeDimension = d.dimension;
 }
 
-// Phase 1: every processor needs at least one sample, and the machine's sizes must make sense.
-void validate(const core::View& view, const MachineSettings& machine) {
-  const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
-  const bool bspFits =
-      (long long)machine.rows * machine.columns <= (long long)view.samplesX() * view.samplesY();
-  if (machine.columns < 1 || machine.rows < 1 || !(machine.balance == Balance::Bsp ? bspFits : gridFits))
-    throw std::invalid_argument(
-        fmt::format("--procs {}x{}: every processor needs at least one sample (and, on a "
-                    "uniform grid, one sample row and column) of the {}x{} sample grid",
-                    machine.rows, machine.columns, view.samplesX(), view.samplesY()));
-  if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
-  if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
-}
-
 // Phase 2 (3.1, 3.7.1): a uniform grid, or a BSP of the sub-sampled load into areas of equal estimate.
 node::RegionMap partition(const core::View& view, const LoadSample& load, const MachineSettings& machine) {
   const node::ScreenLines lines(view);
@@ -221,13 +206,14 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   const auto start = Clock::now();
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
-  validate(view, machine);
+  requireMachineFits(machine, view);  // phase 1
   const core::Whitted shading(scene, settings.shading);
   // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
   const LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
                                         machine.lightRays != node::LightRayMode::Messages);
   std::vector<node::EyeBox> boxes;
-  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view));
+  const double sceneExtent = 2 * scene.largestCoordinate();
+  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
   // The scene is the caller's and outlives the render: the context shares it without owning it.
   const node::MachineContext context{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene), view,
                                      settings.shading, partition(view, load, machine), std::move(boxes)};

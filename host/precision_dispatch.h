@@ -13,6 +13,7 @@ namespace raycube::host {
 // Calls render.template operator()<Real>(tracedScene) with Real = float or double.
 template <class Render>
 RenderResult renderInPrecision(const core::Scene& scene, core::Precision precision, Render&& render) {
+  core::requireRenderable(scene, precision);
   const std::optional<core::Scene> rescaled = core::rescaledFor(scene, precision);
   const core::Scene& traced = rescaled ? *rescaled : scene;
   return core::withPrecision(precision,

@@ -16,7 +16,7 @@ double widen(double v, double magnitude) {
 
 }  // namespace
 
-EyeBox eyeBoxOf(const core::Object& object, const core::View& view) {
+EyeBox eyeBoxOf(const core::Object& object, const core::View& view, double sceneExtent) {
   core::Box box;
   if (const auto* sphere = std::get_if<core::Sphere>(&object.shape)) {
     const core::Vec3 c = eyeFramePoint(view, sphere->center);
@@ -35,10 +35,11 @@ EyeBox eyeBoxOf(const core::Object& object, const core::View& view) {
   }
   const core::Vec3 size = box.extent();
   const double magnitude = std::max({size.x, size.y, size.z});
+  const double hitError = core::kFloatHitErrorRelative * sceneExtent;
   EyeBox eye;
   for (int a = 0; a < 3; ++a) {
-    eye.lo[a] = box.lo[a] - widen(box.lo[a], magnitude);
-    eye.hi[a] = box.hi[a] + widen(box.hi[a], magnitude);
+    eye.lo[a] = box.lo[a] - widen(box.lo[a], magnitude) - hitError;
+    eye.hi[a] = box.hi[a] + widen(box.hi[a], magnitude) + hitError;
   }
   return eye;
 }

@@ -10,7 +10,9 @@ struct EyeBox {
   core::Vec3 lo, hi;  // eye frame (x right, y down, z depth), widened by kCellMarginRelative
 };
 
-EyeBox eyeBoxOf(const core::Object& object, const core::View& view);
+// sceneExtent bounds the length of any ray segment in the scene (e.g. twice its largest coordinate): a
+// float ray's hit may lie kFloatHitErrorRelative of it off the object, so the box is widened by that too.
+EyeBox eyeBoxOf(const core::Object& object, const core::View& view, double sceneExtent);
 
 // Screen-coordinate ranges [lo, hi] of a column, and a depth slab [zLo, zHi] (zLo >= 0).
 struct ColumnSlab {

@@ -224,5 +224,44 @@ TEST_F(Cli, ChartsTakeTheirFormatFromTheExtension) {
   EXPECT_NE(bad.err.find("c.gif"), std::string::npos) << bad.err;
 }
 
+// Numbers past int's range are errors, never wrapped into range (4294967297 = 2^32 + 1 used to become 1).
+TEST_F(Cli, OverflowingSizesAndProcessorCountsAreErrors) {
+  expectOneLineError("render --balls 1 --size 4294967297x4294967297 -q -o x.png", {"--size", "4294967297"});
+  expectOneLineError("render --balls 1 --size 16x16 --procs 4294967298x2 -q -o x.png", {"--procs", "4294967298"});
+  expectOneLineError("render --balls 1 --size 16x16 --procs 2x2x -q -o x.png", {"--procs"});
+}
+
+TEST_F(Cli, NanMinWeightIsAnError) {
+  expectOneLineError("render --balls 1 --size 16x16 --min-weight nan -q -o x.png", {"--min-weight"});
+}
+
+// Outputs are checked before the scene is even read: a broken scene would otherwise be reported first.
+TEST_F(Cli, UnwritableOutputsFailBeforeRendering) {
+  std::ofstream(dir_ / "broken.nff") << "v\n";
+  std::ofstream(dir_ / "blocker") << "a file, not a folder\n";
+  expectOneLineError("render broken.nff -q -o x.jpg", {"x.jpg", ".png"});
+  expectOneLineError("render broken.nff -q -o blocker/x.png", {"--output", "blocker/x.png"});
+  expectOneLineError("render broken.nff -q -o x.png --stats blocker/s.json", {"--stats", "blocker/s.json"});
+  expectOneLineError("render broken.nff -q -o x.png --mode reference --overlay o.png", {"--overlay", "machine"});
+  EXPECT_FALSE(fs::exists(dir_ / "x.jpg"));
+}
+
+// The BSP's hypercube mapping places at most 1024 processors: say so before any work, not after gigabytes.
+TEST_F(Cli, TooManyBspProcessorsFailAtOnce) {
+  expectOneLineError("render --balls 1 --size 64x64 --procs 64x64 -q -o x.png", {"--procs 64x64", "1024"});
+}
+
+// Without --procs the default 4x4 grid shrinks to fit the image; the user never gave --procs 4x4.
+TEST_F(Cli, TheDefaultProcessorGridFitsATinyImage) {
+  std::ofstream(dir_ / "one.nff") << "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.01\n"
+                                     "resolution 1 1\nl 1 1 -5\nf 1 1 1 1 0 0 0 1\ns 0 0 0 1\n";
+  const Outcome r = run("render one.nff -q -o x.png");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("--procs"), std::string::npos) << r.err;
+  const Outcome explicitGrid = run("render one.nff --procs 4x4 --balance uniform -q -o y.png");
+  EXPECT_NE(explicitGrid.exitCode, 0);
+  EXPECT_NE(explicitGrid.err.find("--procs 4x4"), std::string::npos) << explicitGrid.err;
+}
+
 }  // namespace
 }  // namespace raycube::host

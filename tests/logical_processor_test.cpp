@@ -100,7 +100,7 @@ class LogicalProcessorTest : public ::testing::Test {
       return c;
     };
     std::vector<EyeBox> boxes;
-    for (const core::Object& o : scene_.objects) boxes.push_back(eyeBoxOf(o, view));
+    for (const core::Object& o : scene_.objects) boxes.push_back(eyeBoxOf(o, view, 2 * scene_.largestCoordinate()));
     return MachineContext{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene_), view,
                           core::ShadingOptions{},
                           RegionMap::grid(cuts(kSide, columns), cuts(kSide, rows), lines), boxes};

@@ -259,7 +259,7 @@ TEST(MachineTest, ReflectionsBehindTheEyeMatchReference) {
   const RenderSettings settings = settingsFor(side);
   // The red sphere lies wholly behind the eye plane: no pyramid holds it, every processor does.
   const core::View view(withRear.camera, side, side, settings.sampling);
-  ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(withRear.objects[1], view)));
+  ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(withRear.objects[1], view, 2 * withRear.largestCoordinate())));
 
   const RenderResult reference = renderReference(withRear, settings);
   const RenderResult referenceWithout = renderReference(without, settings);
@@ -286,7 +286,7 @@ TEST(MachineTest, BallsFloorReachesBehindTheEye) {
   const RenderSettings settings = settingsFor(side);
   const core::View view(scene.camera, side, side, settings.sampling);
   ASSERT_TRUE(std::holds_alternative<core::Polygon>(scene.objects[0].shape));
-  EXPECT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[0], view)));
+  EXPECT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[0], view, 2 * scene.largestCoordinate())));
   const RenderResult reference = renderReference(scene, settings);
   MachineReport report;
   const RenderResult machine =
@@ -325,7 +325,7 @@ TEST(MachineTest, ObjectsStraddlingTheEyePlaneMatchReference) {
   const RenderSettings settings = settingsFor(side);
   const core::View view(scene.camera, side, side, settings.sampling);
   for (std::size_t o : {std::size_t(1), std::size_t(2)})
-    ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[o], view))) << "object " << o;
+    ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[o], view, 2 * scene.largestCoordinate()))) << "object " << o;
   const RenderResult reference = renderReference(scene, settings);
   for (Grid g : {Grid{1, 1}, Grid{2, 2}, Grid{3, 5}, Grid{8, 8}})
     for (std::size_t capacity : {std::size_t(1), std::size_t(8)})

@@ -275,6 +275,22 @@ TEST(NffReader, RejectsNanAndInfInEveryKindOfField) {
   }
 }
 
+// Lengths are scaled before they are squared: an eye at 1e200 is not "parallel to up", a triangle at 1e-78
+// is not "collinear".
+TEST(NffReader, HugeAndTinyButValidGeometryIsAccepted) {
+  const auto view = [](const char* from) {
+    return std::string("v\nfrom ") + from + "\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0\nresolution 4 4\n";
+  };
+  EXPECT_NO_THROW(parseNff(view("0 0 -1e200") + "f 1 1 1 1 0 0 0 0\ns 0 0 0 1\n", "far.nff"));
+  EXPECT_NO_THROW(parseNff(view("0 0 -1e-300") + "f 1 1 1 1 0 0 0 0\ns 0 0 0 1e-301\n", "near.nff"));
+  const Scene tiny = parseNff(view("0 0 -5") + "f 1 1 1 1 0 0 0 0\np 3\n0 0 0\n1e-78 0 0\n0 1e-78 0\n"
+                                               "pp 3\n0 0 0 0 0 1\n1e-300 0 0 0 0 1\n0 1e-300 0 0 0 1\n",
+                              "tiny.nff");
+  EXPECT_EQ(tiny.objects.size(), 2u);
+  EXPECT_THROW(parseNff(view("0 0 -5") + "f 1 1 1 1 0 0 0 0\np 3\n0 0 0\n1e-78 0 0\n2e-78 0 0\n", "line.nff"),
+               SceneError);
+}
+
 TEST(NffReader, MissingFileNamesThePath) {
   try {
     readNff("/nonexistent/raycube/nothing.nff");

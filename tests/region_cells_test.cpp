@@ -20,7 +20,7 @@ struct Fixture {
   std::vector<std::uint32_t> all;
   Fixture() {
     for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
-      boxes.push_back(eyeBoxOf(scene.objects[i], view));
+      boxes.push_back(eyeBoxOf(scene.objects[i], view, 2 * scene.largestCoordinate()));
       all.push_back(i);
     }
   }

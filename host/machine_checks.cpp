@@ -1,0 +1,35 @@
+#include "host/machine_checks.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "host/hypercube_mapping.h"
+
+namespace raycube::host {
+
+void requireMachineFits(const MachineSettings& machine, const core::View& view) {
+  const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
+  const long long processors = (long long)machine.rows * machine.columns;
+  const bool bspFits = processors <= (long long)view.samplesX() * view.samplesY();
+  if (machine.columns < 1 || machine.rows < 1 || !(machine.balance == Balance::Bsp ? bspFits : gridFits))
+    throw std::invalid_argument(
+        fmt::format("--procs {}x{}: every processor needs at least one sample (and, on a "
+                    "uniform grid, one sample row and column) of the {}x{} sample grid",
+                    machine.rows, machine.columns, view.samplesX(), view.samplesY()));
+  if (machine.balance == Balance::Bsp && processors > kMaxMappedVertices)
+    throw std::invalid_argument(
+        fmt::format("--procs {}x{}: --balance bsp maps at most {} processors onto the hypercube, got {} "
+                    "(use fewer processors or --balance uniform)",
+                    machine.rows, machine.columns, kMaxMappedVertices, processors));
+  if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
+  if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
+}
+
+std::pair<int, int> defaultProcessorGrid(const core::View& view) {
+  const MachineSettings defaults;
+  return {std::min(defaults.rows, view.samplesY()), std::min(defaults.columns, view.samplesX())};
+}
+
+}  // namespace raycube::host
