@@ -31,6 +31,14 @@ double niceStep(double rough) {
   return 10 * decade;
 }
 
+// 1, 2 or 5 times a power of ten, the largest at most `value` (> 0).
+double niceBelow(double value) {
+  const double decade = std::pow(10.0, std::floor(std::log10(value)));
+  for (double m : {5.0, 2.0, 1.0})
+    if (m * decade <= value * (1 + 1e-9)) return m * decade;
+  return decade;
+}
+
 std::string tickLabel(double value, double step) {
   // Rounded to the step first, so 0.1 + 0.2 prints as 0.3.
   const double rounded = std::round(value / step) * step;
@@ -77,6 +85,83 @@ ChartColor darker(ChartColor c) {
 
 double luminance(ChartColor c) {
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+// The points of a series that the axes can show, in device coordinates, with their labels ("" if none).
+std::vector<std::pair<ChartPoint, std::string>> shownPoints(const Series& s, const PlotFrame& frame,
+                                                            AxisScale xs, AxisScale ys) {
+  std::vector<std::pair<ChartPoint, std::string>> shown;
+  for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k)
+    if (plottable(s.x[k], xs) && plottable(s.y[k], ys))
+      shown.push_back({{frame.x(s.x[k]), frame.y(s.y[k])}, k < s.pointLabels.size() ? s.pointLabels[k] : ""});
+  return shown;
+}
+
+struct PointLabel {
+  ChartPoint at;
+  std::string text;
+};
+
+// Points of one series closer than this share one label ("0.05, 0.02, 0"): separate labels could not be
+// read, and every setting stays named.
+constexpr double kSamePlace = 6;
+
+std::vector<PointLabel> pointLabelsOf(const Series& s, const PlotFrame& frame, AxisScale xs, AxisScale ys) {
+  std::vector<PointLabel> labels;
+  for (const auto& [at, text] : shownPoints(s, frame, xs, ys)) {
+    if (text.empty()) continue;
+    if (!labels.empty() &&
+        std::hypot(at.first - labels.back().at.first, at.second - labels.back().at.second) < kSamePlace)
+      labels.back().text += ", " + text;
+    else
+      labels.push_back({at, text});
+  }
+  return labels;
+}
+
+bool overlaps(const ChartRect& a, const ChartRect& b) {
+  return a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h;
+}
+
+// Tries places around the point (right, left, above, below, then farther out) and takes the one that
+// overlaps the fewest labels already placed, then the fewest markers.
+void placeLabel(Painter& painter, const PointLabel& label, TextStyle style,
+                const std::vector<ChartPoint>& markers, std::vector<ChartRect>& taken) {
+  const double w = textWidth(label.text, style.size), h = style.size;
+  struct Place {
+    double dx, dy;
+    TextAnchor anchor;
+  };
+  static constexpr Place kPlaces[] = {{6, -5, TextAnchor::Start},   {6, 13, TextAnchor::Start},
+                                      {-6, -5, TextAnchor::End},    {-6, 13, TextAnchor::End},
+                                      {0, -9, TextAnchor::Middle},  {0, 19, TextAnchor::Middle},
+                                      {0, -22, TextAnchor::Middle}, {0, 32, TextAnchor::Middle},
+                                      {10, -18, TextAnchor::Start}, {-10, 26, TextAnchor::End}};
+  auto boxOf = [&](const Place& p) {
+    const double shift = p.anchor == TextAnchor::End ? w : p.anchor == TextAnchor::Middle ? w / 2 : 0;
+    return ChartRect{label.at.first + p.dx - shift, label.at.second + p.dy - h * 0.8, w, h};
+  };
+  // Labels hidden under labels cannot be read at all; a marker under a label still shows around it.
+  auto cost = [&](const ChartRect& box) {
+    const auto labels =
+        std::count_if(taken.begin(), taken.end(), [&](const ChartRect& t) { return overlaps(box, t); });
+    const auto points = std::count_if(markers.begin(), markers.end(), [&](const ChartPoint& m) {
+      return overlaps(box, {m.first - 3.5, m.second - 3.5, 7, 7});
+    });
+    return 100 * labels + points;
+  };
+  const Place* chosen = &kPlaces[0];
+  long best = cost(boxOf(kPlaces[0]));
+  for (const Place& p : kPlaces) {
+    const long c = cost(boxOf(p));
+    if (c < best) {
+      best = c;
+      chosen = &p;
+    }
+  }
+  taken.push_back(boxOf(*chosen));
+  style.anchor = chosen->anchor;
+  painter.text(label.at.first + chosen->dx, label.at.second + chosen->dy, label.text, style);
 }
 
 }  // namespace
@@ -131,8 +216,8 @@ AxisRange axisRange(const Axis& axis, std::span<const double> values) {
   AxisRange r;
   if (axis.scale == AxisScale::Log) {
     if (!(lo <= hi)) lo = hi = 1;
-    r = {std::pow(10.0, std::floor(std::log10(lo))), std::pow(10.0, std::ceil(std::log10(hi)))};
-    if (r.lo == r.hi) r.hi *= 10;
+    r = {niceBelow(lo), niceStep(hi)};
+    if (r.lo == r.hi) r.hi = niceStep(r.hi * 1.5);
   } else {
     if (!(lo <= hi)) lo = hi = 0;
     if (axis.includeZero) {
@@ -266,27 +351,27 @@ void LineChart::drawBody(Painter& painter, ChartRect area) const {
   const ChartRect rest = drawLegend(painter, area, legend);
   const std::vector<double> xs = collect(series, true), ys = collect(series, false);
   const PlotFrame frame = drawAxes(painter, rest, x, axisRange(x, xs), y, axisRange(y, ys));
+  std::vector<ChartPoint> markers;
   for (std::size_t i = 0; i < series.size(); ++i) {
-    const Series& s = series[i];
     std::vector<ChartPoint> points;
-    std::vector<std::size_t> shown;
-    for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k)
-      if (plottable(s.x[k], x.scale) && plottable(s.y[k], y.scale)) {
-        points.emplace_back(frame.x(s.x[k]), frame.y(s.y[k]));
-        shown.push_back(k);
-      }
+    for (const auto& [point, label] : shownPoints(series[i], frame, x.scale, y.scale))
+      points.push_back(point);
+    markers.insert(markers.end(), points.begin(), points.end());
     painter.polyline(points, paletteColor(i), 2);
-    for (std::size_t p = 0; p < points.size(); ++p) {
-      painter.disc(points[p].first, points[p].second, 3.5, paletteColor(i));
-      if (shown[p] < s.pointLabels.size())
-        painter.text(points[p].first + 5, points[p].second - 5, s.pointLabels[shown[p]],
-                     {.size = 10, .color = darker(paletteColor(i))});
-    }
+    for (const ChartPoint& p : points) painter.disc(p.first, p.second, 3.5, paletteColor(i));
   }
+  // Labels last, each where it overlaps no other label and no marker.
+  std::vector<ChartRect> taken;
+  for (std::size_t i = 0; i < series.size(); ++i)
+    for (const PointLabel& label : pointLabelsOf(series[i], frame, x.scale, y.scale)) {
+      const TextStyle style{.size = 10, .color = darker(paletteColor(i))};
+      placeLabel(painter, label, style, markers, taken);
+    }
 }
 
 double BarChart::width() const {
-  return std::max(760.0, 220 + double(categories.size()) * std::max(24.0, 10.0 * double(series.size())));
+  return std::max(preferredWidth,
+                  220 + double(categories.size()) * std::max(24.0, 10.0 * double(series.size())));
 }
 
 void BarChart::drawBody(Painter& painter, ChartRect area) const {

@@ -69,10 +69,11 @@ class Chart {
  public:
   std::string title;
   std::string caption;  // the scene and settings the chart came from, one line under the picture
+  double preferredWidth = 760, preferredHeight = 460;  // pixels; some charts grow with their data
 
   virtual ~Chart() = default;
-  virtual double width() const { return 760; }
-  virtual double height() const { return 460; }
+  virtual double width() const { return preferredWidth; }
+  virtual double height() const { return preferredHeight; }
   // Everything but the title and caption, inside `area`.
   virtual void drawBody(Painter& painter, ChartRect area) const = 0;
   // Background, title on top, caption at the bottom, the body between.

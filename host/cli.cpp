@@ -478,6 +478,7 @@ struct TradeoffCommand {
   std::string csv = "out/tradeoff.csv";
   std::string plot = "out/tradeoff.png";
   std::string reportPath;
+  std::string fromCsv;
 };
 
 // `raycube tradeoff`: the knobs' speed against their error, as a table, CSV and a plot.
@@ -491,23 +492,34 @@ int runTradeoff(const TradeoffCommand& cmd) {
   base.progress = false;
   TradeoffOptions options;
   options.runs = cmd.runs;
-  std::cerr << "rendering the converged reference (depth " << options.referenceDepth << ", "
-            << options.referenceRaysPerSample << " rays per pixel)...\n";
-  const auto rows = measureTradeoff(scene, base, options, [](const TradeoffRow& r) {
-    std::cerr << "  " << r.knob << " " << r.setting << ": " << fmt::format("{:.3f} s", r.seconds) << "\n";
-  });
+  std::vector<TradeoffRow> rows;
+  std::string windows;
+  if (!cmd.fromCsv.empty()) {
+    rows = readTradeoffCsv(cmd.fromCsv);  // redraw only: the measurements are the CSV's
+  } else {
+    std::cerr << "rendering the converged reference (depth " << options.referenceDepth << ", "
+              << options.referenceRaysPerSample << " rays per pixel)...\n";
+    rows = measureTradeoff(scene, base, options, [](const TradeoffRow& r) {
+      std::cerr << "  " << r.knob << " " << r.setting << ": " << fmt::format("{:.3f} s", r.seconds) << "\n";
+    });
+  }
   const std::string table = tradeoffTable(rows);
   std::cout << table;
-  std::cerr << "measuring the load-estimate window on " << cmd.processors << " processors...\n";
-  const std::string windows = subsampleTable(measureSubsampling(scene, base, cmd.processors, cmd.runs));
-  std::cout << "\n" << windows;
+  if (cmd.fromCsv.empty()) {
+    std::cerr << "measuring the load-estimate window on " << cmd.processors << " processors...\n";
+    windows = subsampleTable(measureSubsampling(scene, base, cmd.processors, cmd.runs));
+    std::cout << "\n" << windows;
+  }
   const std::string caption = fmt::format(
       "{}, {}x{}, image-parallel, median of {} runs; reference depth {}, {} rays per pixel", scene.name,
       base.width, base.height, cmd.runs, options.referenceDepth, options.referenceRaysPerSample);
   const LineChart plot = tradeoffPlot(rows, caption);
-  writeTradeoffCsv(rows, ensureParent(cmd.csv));
+  if (cmd.fromCsv.empty()) {
+    writeTradeoffCsv(rows, ensureParent(cmd.csv));
+    std::cout << "wrote " << cmd.csv << '\n';
+  }
   writeChart(plot, ensureParent(cmd.plot));
-  std::cout << "wrote " << cmd.csv << " and " << cmd.plot << '\n';
+  std::cout << "wrote " << cmd.plot << '\n';
   if (!cmd.reportPath.empty()) {
     RunReport run;
     run.title = fmt::format("raycube tradeoff: {}", scene.name);
@@ -535,6 +547,10 @@ void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
   t->add_option("--csv", cmd.csv, "Table as CSV");
   t->add_option("--plot", cmd.plot, "Error against time as a chart (.png or .svg)");
   t->add_option("--report", cmd.reportPath, "Write a self-contained HTML report (tables and plot)");
+  t->add_option("--from-csv", cmd.fromCsv,
+                "Measure nothing: redraw the plot (and report) from a CSV an earlier run wrote; give the "
+                "--size and --runs it used, for the caption")
+      ->check(CLI::ExistingFile);
 }
 
 struct CompareCommand {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "host/machine.h"
@@ -148,10 +149,44 @@ void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesyste
   if (!out) throw std::runtime_error("failed writing " + path.string());
 }
 
+std::vector<TradeoffRow> readTradeoffCsv(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::vector<TradeoffRow> rows;
+  std::string line;
+  std::getline(in, line);  // the header
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    std::vector<std::string> fields;
+    std::stringstream text(line);
+    for (std::string field; std::getline(text, field, ',');) fields.push_back(field);
+    if (fields.size() != 10)
+      throw std::runtime_error(fmt::format("{}:{}: expected 10 comma-separated fields, got {}", path.string(),
+                                           number, fields.size()));
+    TradeoffRow r;
+    r.knob = fields[0];
+    r.setting = fields[1];
+    try {
+      r.seconds = std::stod(fields[2]);
+      for (int k = 0; k < core::kRayKinds; ++k) r.counters.rays[k] = std::stoull(fields[3 + k]);
+      r.rmse = std::stod(fields[7]);
+      r.psnr = std::stod(fields[8]);
+      r.maxAbs = std::stod(fields[9]);
+    } catch (const std::logic_error&) {
+      throw std::runtime_error(
+          fmt::format("{}:{}: not a number where one was expected", path.string(), number));
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 LineChart tradeoffPlot(const std::vector<TradeoffRow>& rows, std::string caption) {
   LineChart chart;
   chart.title = "Speed against accuracy: each knob swept from cheap to accurate";
   chart.caption = std::move(caption);
+  chart.preferredWidth = 960;  // room between the settings that cluster at one ray per pixel
+  chart.preferredHeight = 600;
   chart.x = {.label = "render time, median (s)", .scale = AxisScale::Log};
   chart.y = {.label = "RMSE against the converged reference (linear RGB)", .scale = AxisScale::Log};
   for (const char* knob : kKnobs) {

@@ -48,6 +48,9 @@ std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const Ren
                                              int processors, int runs);
 std::string subsampleTable(const std::vector<SubsampleRow>& rows);
 void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path);
+// The rows an earlier writeTradeoffCsv wrote (intersection and box tests are not in the CSV), to redraw
+// the plot without measuring again. Throws std::runtime_error naming path:line on a malformed line.
+std::vector<TradeoffRow> readTradeoffCsv(const std::filesystem::path& path);
 // Error (RMSE) against time, both on log scales: one named curve per knob, each point labelled with its
 // setting.
 LineChart tradeoffPlot(const std::vector<TradeoffRow>& rows, std::string caption = "");

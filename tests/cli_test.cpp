@@ -263,5 +263,40 @@ TEST_F(Cli, TheDefaultProcessorGridFitsATinyImage) {
   EXPECT_NE(explicitGrid.err.find("--procs 4x4"), std::string::npos) << explicitGrid.err;
 }
 
+TEST_F(Cli, ReportWithoutTheMachineHoldsImageAndSummary) {
+  const Outcome r = run("render --balls 1 --size 16x16 --mode reference -q -o x.png --report r.html");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string html = slurp(dir_ / "r.html");
+  EXPECT_NE(html.find("src=\"data:image/png;base64,"), std::string::npos);
+  EXPECT_NE(html.find("mode reference"), std::string::npos) << "the summary";
+  EXPECT_EQ(html.find("<table class=\"sortable"), std::string::npos) << "no processors without the machine";
+  EXPECT_NE(r.out.find("wrote r.html"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, TradeoffWritesPlotAndReport) {
+  const Outcome r =
+      run("tradeoff --balls 1 --size 16x16 --runs 1 --procs 2 --csv t.csv --plot t.svg --report t.html");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string svg = slurp(dir_ / "t.svg");
+  for (const char* knob : {">depth</text>", ">min-weight</text>", ">spp</text>", ">precision</text>"})
+    EXPECT_NE(svg.find(knob), std::string::npos) << knob;
+  const std::string html = slurp(dir_ / "t.html");
+  EXPECT_NE(html.find("subsample"), std::string::npos) << "the sub-sampling table";
+  EXPECT_NE(html.find(">Speed against accuracy"), std::string::npos) << "the plot, inline";
+  EXPECT_EQ(html.find("http"), std::string::npos);
+  // Redrawn from its own CSV (times rounded to microseconds), the plot says the same words.
+  const Outcome again = run("tradeoff --balls 1 --size 16x16 --runs 1 --from-csv t.csv --plot u.svg");
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  auto words = [](const std::string& text) {
+    std::vector<std::string> found;
+    const std::regex element(">([^<]*)</text>");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), element); it != std::sregex_iterator();
+         ++it)
+      found.push_back((*it)[1].str());
+    return found;
+  };
+  EXPECT_EQ(words(slurp(dir_ / "u.svg")), words(svg));
+}
+
 }  // namespace
 }  // namespace raycube::host

@@ -50,6 +50,16 @@ TEST(Tradeoff, MoreAccurateSettingsComeCloserToTheReference) {
   int lines = 0;
   for (std::string line; std::getline(in, line);) ++lines;
   EXPECT_EQ(lines, int(rows.size()) + 1);
+  // The CSV redraws the plot: what it holds reads back.
+  const std::vector<TradeoffRow> back = readTradeoffCsv(csv);
+  ASSERT_EQ(back.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(back[i].knob, rows[i].knob);
+    EXPECT_EQ(back[i].setting, rows[i].setting);
+    EXPECT_NEAR(back[i].seconds, rows[i].seconds, 1e-6);
+    EXPECT_EQ(back[i].counters.rays, rows[i].counters.rays);
+    EXPECT_NEAR(back[i].rmse, rows[i].rmse, 1e-5 * rows[i].rmse);
+  }
   std::filesystem::remove(csv);
   const LineChart plot = tradeoffPlot(rows, "balls1, 24x24");
   ASSERT_EQ(plot.series.size(), std::size(kKnobs));
@@ -80,6 +90,23 @@ TEST(Tradeoff, SubsamplingWindowsReportTheirCostAndBalance) {
   EXPECT_EQ(rows.front().window, 16);
   EXPECT_EQ(rows.back().window, 1);
   EXPECT_NE(subsampleTable(rows).find("16x16"), std::string::npos);
+}
+
+TEST(Tradeoff, MalformedCsvNamesItsLine) {
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / "raycube_tradeoff_bad.csv";
+  {
+    std::ofstream out(csv);
+    out << "knob,setting,seconds,eye_rays,reflected_rays,refracted_rays,shadow_rays,rmse,psnr_db,max_error\n";
+    out << "depth,1,0.02,65536,0,0,180220,0.12,18.38,0.482\n";
+    out << "depth,2,fast,65536,0,0,180220,0.12,18.38,0.482\n";
+  }
+  try {
+    readTradeoffCsv(csv);
+    ADD_FAILURE() << "no error for a malformed line";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("raycube_tradeoff_bad.csv:3"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(csv);
 }
 
 }  // namespace
