@@ -1,6 +1,7 @@
 #include "host/cli.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -134,15 +135,16 @@ const CLI::Validator kNotNaN(
 
 // Output files are checked before a render that may take minutes: the extension, and that the file can be
 // created (its folder is created as writing would). A file that did not exist is removed again.
-void requireWritable(const std::string& path, const char* option, bool image) {
+// `extensions`: the formats the option writes ("" for any file).
+void requireWritable(const std::string& path, const char* option, const std::vector<std::string>& extensions) {
   if (path.empty()) return;
   const std::filesystem::path p(path);
-  if (image) {
+  if (!extensions.empty()) {
     std::string ext = p.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext != ".exr" && ext != ".png")
-      throw CLI::ValidationError(
-          option, fmt::format("'{}': unknown image extension '{}' (use .exr or .png)", path, p.extension().string()));
+    if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
+      throw CLI::ValidationError(option, fmt::format("'{}': unknown extension '{}' (use {})", path,
+                                                     p.extension().string(), fmt::join(extensions, " or ")));
   }
   std::error_code error;
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path(), error);
@@ -321,10 +323,12 @@ int runRender(const RenderCommand& cmd) {
   if (!machineMode && !cmd.loadChartPath.empty())
     throw std::invalid_argument("--load-chart needs --mode machine");
   if (!cmd.procs.empty()) parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
-  requireWritable(cmd.output, "--output", true);
-  requireWritable(cmd.statsPath, "--stats", false);
-  requireWritable(cmd.overlayPath, "--overlay", true);
-  requireWritable(cmd.loadChartPath, "--load-chart", true);
+  requireWritable(cmd.output, "--output", {".exr", ".png"});
+  requireWritable(cmd.statsPath, "--stats", {});
+  requireWritable(cmd.overlayPath, "--overlay", {".png", ".svg"});
+  requireWritable(cmd.loadChartPath, "--load-chart", {".png", ".svg"});
+  requireWritable(cmd.timelinePath, "--timeline", {".png", ".svg"});
+  requireWritable(cmd.reportPath, "--report", {".html"});
   std::optional<MachineReport> report;
   std::optional<RenderResult> result;
   std::optional<core::Scene> scene;
