@@ -261,8 +261,7 @@ void LogicalProcessor<Real>::send(Message m) {
 
 template <class Real>
 std::size_t LogicalProcessor<Real>::slotOf(int neighbour) const {
-  return std::size_t(std::lower_bound(neighbours_.begin(), neighbours_.end(), neighbour) -
-                     neighbours_.begin());
+  return context_.regions.neighbourSlot(setup_.id, neighbour);
 }
 
 template <class Real>

@@ -4,6 +4,7 @@
 // after a BSP a region can border several others on one face). A node uses it to name the owner of a point,
 // the neighbour a ray enters and the next hop towards a processor that is not a neighbour; it knows
 // nothing of how the host chose the areas.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -41,6 +42,11 @@ class RegionMap {
 
   // Regions sharing a stretch of boundary with `id`, in increasing order, and which face of `id` they touch.
   const std::vector<int>& neighbours(int id) const { return neighbours_[id]; }
+  // Where `neighbour` stands in neighbours(id): the index of the FIFO between the two.
+  std::size_t neighbourSlot(int id, int neighbour) const {
+    const std::vector<int>& n = neighbours_[id];
+    return std::size_t(std::lower_bound(n.begin(), n.end(), neighbour) - n.begin());
+  }
   Face faceToward(int id, int neighbour) const;
   // The neighbour of `from` on a shortest path to `to` in the adjacency graph.
   int nextHop(int from, int to) const;

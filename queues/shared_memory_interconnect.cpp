@@ -105,9 +105,7 @@ node::BasicTransport<Real>& SharedMemoryInterconnect<Real>::endpoint(int process
 
 template <class Real>
 typename SharedMemoryInterconnect<Real>::RayQueue* SharedMemoryInterconnect<Real>::queue(int from, int to) const {
-  const std::vector<int>& n = regions_.neighbours(from);
-  const auto k = std::size_t(std::lower_bound(n.begin(), n.end(), to) - n.begin());
-  return outgoing_[from][k].get();
+  return outgoing_[from][regions_.neighbourSlot(from, to)].get();
 }
 
 template <class Real>

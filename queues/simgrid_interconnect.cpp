@@ -39,7 +39,7 @@ template <class Real>
 class SimGridInterconnect<Real>::Endpoint final : public node::BasicTransport<Real> {
  public:
   Endpoint(SimGridInterconnect& net, int id)
-      : net_(net), id_(id), neighbours_(net.regions_.neighbours(id)), creditsUsed_(neighbours_.size(), 0) {}
+      : net_(net), id_(id), creditsUsed_(net.regions_.neighbours(id).size(), 0) {}
 
   std::size_t trySend(int neighbour, std::span<const Message> messages) override {
     std::size_t& used = creditsUsed_[slotOf(neighbour)];
@@ -119,12 +119,11 @@ class SimGridInterconnect<Real>::Endpoint final : public node::BasicTransport<Re
 
  private:
   std::size_t slotOf(int neighbour) const {
-    return std::size_t(std::lower_bound(neighbours_.begin(), neighbours_.end(), neighbour) - neighbours_.begin());
+    return net_.regions_.neighbourSlot(id_, neighbour);
   }
 
   SimGridInterconnect& net_;
   int id_;
-  const std::vector<int>& neighbours_;
   std::vector<std::size_t> creditsUsed_;  // per neighbour: rays sent and not yet taken in
   std::deque<std::pair<int, Message>> inbox_;
   std::optional<node::Token> token_;
