@@ -5,7 +5,7 @@
 # repetition of millions of messages per second, and the second build's over the first's.
 #
 # usage: benchmarks/queue_compare.sh BENCHMARK_BINARY [OTHER_BENCHMARK_BINARY]
-# environment: FILTER (default 'Throughput/ray'), ROUNDS (default 3).
+# environment: FILTER (default 'Throughput/ray'), ROUNDS (default 3). Needs jq.
 set -euo pipefail
 [[ $# -ge 1 && $# -le 2 ]] || { echo "usage: $0 BENCHMARK_BINARY [OTHER_BENCHMARK_BINARY]" >&2; exit 1; }
 binaries=("$@")
@@ -31,10 +31,9 @@ medians() { sort -k1,1 -k2,2g "$1" | awk '
 medians "$out/0.txt" > "$out/0.med"
 echo "$filter, $rounds rounds x 5 repetitions per build; M messages/s (median)"
 if [[ ${#binaries[@]} -eq 1 ]]; then
-  column -t "$out/0.med"
+  awk '{printf "%-90s %8s\n", $1, $2}' "$out/0.med"
 else
   medians "$out/1.txt" > "$out/1.med"
-  echo "benchmark ${binaries[0]} ${binaries[1]} ratio" > "$out/table"
-  join "$out/0.med" "$out/1.med" | awk '{printf "%s %s %s %.2f\n", $1, $2, $3, $3 / $2}' >> "$out/table"
-  column -t "$out/table"
+  echo "columns: benchmark, ${binaries[0]}, ${binaries[1]}, second / first"
+  join "$out/0.med" "$out/1.med" | awk '{printf "%-90s %8s %8s %6.2f\n", $1, $2, $3, $3 / $2}'
 fi

@@ -188,7 +188,9 @@ class alignas(kCacheLine) SpscQueue {
 
   std::size_t pushSome(std::span<const T> messages) {
     const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
-    const bool refreshed = capacity_ - (tail - headCache_) < messages.size();
+    // One read of the consumer's index at most: where the cached copy says the queue is too full, or for an
+    // occupancy sample.
+    const bool refreshed = capacity_ - (tail - headCache_) < messages.size() || sampleDue(messages.size());
     if (refreshed) headCache_ = head_.load(std::memory_order_acquire);
     const std::size_t n = std::min<std::size_t>(messages.size(), capacity_ - (tail - headCache_));
     if (n > 0) {
@@ -211,16 +213,17 @@ class alignas(kCacheLine) SpscQueue {
     return n;
   }
 
-  // Occupancy after a push, read off the cached index where it is fresh: after a refresh (the queue looked
-  // full), and at samples, which refresh it. A busy queue thus costs one more read of the consumer's index
-  // per sample period than without accounting, and a refused push always sees the queue full.
+  bool sampleDue(std::size_t messages) const {
+    if constexpr (kCounting) return messages >= producer_.untilSample;
+    return false;
+  }
+
+  // Occupancy after a push, read off the cached index where pushSome refreshed it: where the queue looked
+  // full (so a refused push sees it full) and at samples. A busy queue costs one more read of the consumer's
+  // index per sample period than without accounting.
   void recordPush(std::uint64_t tail, std::size_t n, bool refreshed) {
-    const bool sample = n > 0 && n >= producer_.untilSample;
+    const bool sample = n > 0 && n >= producer_.untilSample;  // then sampleDue was true: refreshed
     producer_.untilSample = sample ? occupancySamplePeriod(capacity_) : producer_.untilSample - n;
-    if (sample && !refreshed) {
-      headCache_ = head_.load(std::memory_order_acquire);
-      refreshed = true;
-    }
     if (!refreshed) return;
     const std::uint64_t occupancy = tail - headCache_;
     if (occupancy > read(producer_.highWater))

@@ -4,7 +4,6 @@
 // reflection) shows here even when its picture looks plausible.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <string>
 
 #include "core/balls.h"

@@ -5,13 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <future>
 #include <map>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "core/balls.h"
