@@ -56,11 +56,9 @@ Step LogicalProcessor<Real>::step() {
 }
 
 template <class Real>
-NodeStats LogicalProcessor<Real>::stats() const {
-  NodeStats s = stats_;
-  s.tokenVisits = termination_.visits();
-  s.tokenRounds = termination_.roundsStarted();
-  return s;
+void LogicalProcessor<Real>::countToken() {
+  stats_.tokenVisits = termination_.visits();
+  stats_.tokenRounds = termination_.roundsStarted();
 }
 
 template <class Real>
@@ -319,9 +317,14 @@ bool LogicalProcessor<Real>::passive() const {
 template <class Real>
 Step LogicalProcessor<Real>::idleStep() {
   transport_.flushContributions();
-  if (Token token; !termination_.holdsToken() && transport_.receiveToken(token)) termination_.takeToken(token);
+  if (Token token; !termination_.holdsToken() && transport_.receiveToken(token)) {
+    termination_.takeToken(token);
+    countToken();
+  }
   if (!termination_.holdsToken() || !passive()) return Step::Waiting;
-  if (termination_.release() == SafraTermination::Decision::AnnounceTermination)
+  const SafraTermination::Decision decision = termination_.release();
+  countToken();
+  if (decision == SafraTermination::Decision::AnnounceTermination)
     transport_.announceTermination();
   else
     transport_.passToken(termination_.token());

@@ -80,7 +80,8 @@ class LogicalProcessor {
   bool readyToStep() const;
   // Waiting on full neighbour FIFOs (3.6's locked processors), not merely idle.
   bool blocked() const { return backlog() > 0; }
-  NodeStats stats() const;
+  // Counted so far; read between steps (a driver charges simulated time from it after every step).
+  const NodeStats& stats() const { return stats_; }
   // Primary rays shot so far; safe to read from another thread (progress reporting).
   long long primariesShot() const { return primariesShot_.load(std::memory_order_relaxed); }
 
@@ -102,6 +103,7 @@ class LogicalProcessor {
   bool flushOverflow();
   void onReceived(const Message& message);
   Step idleStep();
+  void countToken();  // the token's visits and rounds into stats_
   bool passive() const;
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
