@@ -56,6 +56,16 @@ std::vector<Vec3> comb(int teeth) {
   return v;
 }
 
+// A column whose right side zigzags between x = 1 and 2, one unit of height per edge, and whose left side
+// has a vertex at every unit too: 2 * rows edges can be crossed over a height of rows, so the outline's
+// band boundaries fall on the vertices' heights, where a band lookup off by one would show.
+std::vector<Vec3> zigzag(int rows) {
+  std::vector<Vec3> v;
+  for (int k = 0; k <= rows; ++k) v.emplace_back(k % 2 == 0 ? 1 : 2, k, 0);
+  for (int k = rows; k >= 0; --k) v.emplace_back(0, k, 0);
+  return v;
+}
+
 // The points where a banded test could go wrong: every vertex, every edge's midpoint and its point at every
 // vertex height, and each of those moved by one rounding step in x and in y.
 std::vector<Vec3> hardPoints(const std::vector<Vec3>& v) {
@@ -106,6 +116,13 @@ TEST(PolygonOutline, CombAnswersAsTheCrossingTestOverEveryEdge) {
   const std::vector<Vec3> c = comb(36);  // 146 vertices, as many as a gear face
   expectSameAsEveryEdge(c, randomPoints(20000, -0.1, 1.1, 2));
   expectSameAsEveryEdge(c, hardPoints(c));
+}
+
+TEST(PolygonOutline, ZigzagWithVerticesOnBandBoundariesAnswersAsTheCrossingTest) {
+  const std::vector<Vec3> z = zigzag(40);
+  ASSERT_EQ(PolygonOutline(z).bandCount(), 80u);
+  expectSameAsEveryEdge(z, randomPoints(20000, -0.5, 40.5, 3));
+  expectSameAsEveryEdge(z, hardPoints(z));
 }
 
 TEST(PolygonOutline, NotchesAreOutsideAndTheBodyInside) {
