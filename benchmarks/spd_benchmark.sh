@@ -53,8 +53,9 @@ source "$script_dir/timing.sh"
 have_povray=0
 if command -v povray >/dev/null; then have_povray=1; fi
 
-# One raycube run: NAME SCENE_ARGS... -- RENDER_ARGS...; appends its numbers to $out/NAME.runs as
-# "wall_s peak_kB preprocessing_s tracing_s rays primitives", or "timeout" when stopped after the limit.
+# One raycube run: NAME RENDER_ARGS...; appends its numbers to $out/NAME.runs as
+# "wall_s peak_kB preprocessing_s tracing_s rays primitives", "timeout" when stopped after the limit, or
+# "failed" (a note on stderr; the other runs go on).
 # LIMIT (environment) overrides RUN_LIMIT for this run.
 run_raycube() {
   local name=$1
@@ -67,7 +68,11 @@ run_raycube() {
     echo timeout >>"$out/$name.runs"
     return
   fi
-  [[ $status == 0 ]] || { tail -n 5 "$log" >&2; die "raycube render $* failed (exit $status)"; }
+  if [[ $status != 0 ]]; then
+    echo "spd_benchmark.sh: raycube render $* failed (exit $status); see $log" >&2
+    echo failed >>"$out/$name.runs"
+    return
+  fi
   local usage_line
   usage_line=$(tail -n 1 "$usage")
   echo "$usage_line $(jq -r '[.seconds.preprocessing, .seconds.tracing, .totalRays, .scene.objects] | @tsv' "$stats")" \
@@ -85,29 +90,36 @@ run_povray() {
     echo timeout >>"$out/$name.runs"
     return
   fi
-  [[ $status == 0 ]] || { tail -n 5 "$out/$name.log" >&2; die "povray $pov failed (exit $status)"; }
+  if [[ $status != 0 ]]; then
+    echo "spd_benchmark.sh: povray $pov failed (exit $status); see $out/$name.log" >&2
+    echo failed >>"$out/$name.runs"
+    return
+  fi
   local parse trace
   parse=$(sed -n 's/^ *Parse Time:.*(\([0-9.]*\) seconds).*/\1/p' "$out/$name.log" | tail -n 1)
   trace=$(sed -n 's/^ *Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$out/$name.log" | tail -n 1)
   echo "$(tail -n 1 "$out/$name.time") ${parse:-0} ${trace:-0} - -" >>"$out/$name.runs"
 }
 
-# Median of column COLUMN (1-based) of NAME's runs; "timeout" when a run was stopped.
+# Median of column COLUMN (1-based) of NAME's runs; "timeout" or "failed" when a run was.
 column_median() {
   local file="$out/$1.runs"
   if grep -q timeout "$file"; then echo timeout; return; fi
+  if grep -q failed "$file"; then echo failed; return; fi
   awk -v c="$2" '{print $c}' "$file" | median
 }
 
-fmt() { awk -v v="$1" -v f="$2" 'BEGIN { if (v == "timeout" || v == "-" || v == "") print v; else printf f, v }'; }
+fmt() { awk -v v="$1" -v f="$2" 'BEGIN { if (v !~ /^[0-9.e+-]+$/ || v == "-") print v; else printf f, v }'; }
 
 # One markdown row: SCENE_LABEL RENDERER NAME IMAGE_PARALLEL_NAME
 table_row() {
   local label=$1 renderer=$2 name=$3 baseline=$4
   local wall peak pre trace rays prims
   wall=$(column_median "$name" 1)
-  if [[ $wall == timeout ]]; then
-    echo "| $label | | $renderer | | | | | over ${LIMIT_NOTE:-$run_limit} s | |"
+  if [[ $wall == timeout || $wall == failed ]]; then
+    local what="over ${LIMIT_NOTE:-$run_limit} s"
+    [[ $wall == timeout ]] || what="failed (see $out/$name.log)"
+    echo "| $label | | $renderer | | | | | $what | |"
     return
   fi
   peak=$(column_median "$name" 2)
@@ -116,11 +128,11 @@ table_row() {
   rays=$(column_median "$name" 5)
   prims=$(awk '{print $6}' "$out/$name.runs" | head -n 1)
   local ratio=""
-  if [[ $name != "$baseline" && -f "$out/$baseline.runs" ]] && ! grep -q timeout "$out/$baseline.runs"; then
+  if [[ $name != "$baseline" && -f "$out/$baseline.runs" ]] && ! grep -q "timeout\|failed" "$out/$baseline.runs"; then
     ratio=$(awk -v a="$wall" -v b="$(column_median "$baseline" 1)" 'BEGIN {printf "%.2f×", a / b}')
   fi
   local mrays="-"
-  [[ $rays == - ]] || mrays=$(awk -v r="$rays" -v t="$trace" 'BEGIN { if (t > 0) printf "%.2f", r / t / 1e6; else print "-" }')
+  [[ $rays == - ]] || mrays=$(awk -v r="$rays" -v t="$trace" 'BEGIN { if (t > 0) printf "%.3g", r / t / 1e6; else print "-" }')
   echo "| $label | $prims | $renderer | $(fmt "$pre" %.3f) | $(fmt "$trace" %.3f) | $mrays |" \
     "$(awk -v k="$peak" 'BEGIN {printf "%.0f", k / 1024}') | $(fmt "$wall" %.2f) | $ratio |"
 }
@@ -146,7 +158,7 @@ if ((${#scenes[@]} > 0)); then
     for ((run = 1; run <= runs; ++run)); do
       if [[ $reference == 1 ]]; then
         LIMIT=$reference_limit run_raycube "$base.reference" "${scene_args[@]}" --mode reference
-        grep -q timeout "$out/$base.reference.runs" && reference=0
+        grep -q "timeout\|failed" "$out/$base.reference.runs" && reference=0
       fi
       run_raycube "$base.image-parallel" "${scene_args[@]}" --mode image-parallel --threads "$threads"
       run_raycube "$base.machine4x4" "${scene_args[@]}" --mode machine --procs 4x4
@@ -154,7 +166,7 @@ if ((${#scenes[@]} > 0)); then
       [[ -z $pov ]] || run_povray "$base.povray" "$pov" "$size"
     done
     for renderer in reference machine4x4 machine8x8; do
-      if [[ -f $out/$base.$renderer.runs ]] && ! grep -q timeout "$out/$base.$renderer.runs" && ! "$raycube" compare "$out/$base.image-parallel.exr" \
+      if [[ -f $out/$base.$renderer.runs ]] && ! grep -q "timeout\|failed" "$out/$base.$renderer.runs" && ! "$raycube" compare "$out/$base.image-parallel.exr" \
         "$out/$base.$renderer.exr" >/dev/null; then
         echo "spd_benchmark.sh: warning: $base: $renderer's image differs from image-parallel's" >&2
       fi
@@ -183,7 +195,7 @@ fi
 # process.
 per_ray() {
   local name=$1
-  if grep -q timeout "$out/$name.runs"; then echo "timeout timeout"; return; fi
+  if grep -q "timeout\|failed" "$out/$name.runs"; then echo "- -"; return; fi
   echo "$(awk '{print $4 / $5 * 1e6}' "$out/$name.runs" | median) $(awk '{print $1 / $5 * 1e6}' "$out/$name.runs" | median)"
 }
 
@@ -204,7 +216,7 @@ if [[ $sweep == 1 ]]; then
     prims=$(awk '{print $6}' "$out/balls$size.sweep.image-parallel.runs" | head -n 1)
     rays=$(column_median "balls$size.sweep.image-parallel" 5)
     sweep_rows+=("| $size | $prims | $rays | $(fmt "$ip_trace" %.3f) | $(fmt "$ip_whole" %.3f) | $(fmt "$m_trace" %.3f) | $(fmt "$m_whole" %.3f) |")
-    echo "$prims,$(fmt "$ip_trace" %.4f | sed 's/timeout//'),$(fmt "$m_trace" %.4f | sed 's/timeout//')" >>"$csv"
+    echo "$prims,$(fmt "$ip_trace" %.4f | tr -d -),$(fmt "$m_trace" %.4f | tr -d -)" >>"$csv"
   done
   echo "### Cost per ray against primitives (SPD balls, $sweep_size, depth $depth)"
   echo
