@@ -1,6 +1,8 @@
 // The intersection kernels every renderer and every node runs: one ray against one primitive
 // (core::nearestHit), and a ray against the whole balls2 database through the BVH (closest hit and the
-// shadow ray's transmission query). items/s is rays per second.
+// shadow ray's transmission query), and a ray against one of SPD gears' 144-vertex concave faces, as the fan
+// of triangles the polygons were tested as before and as the banded outline they are tested as now.
+// items/s is rays per second.
 //
 //   intersection_benchmark --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
@@ -11,6 +13,8 @@
 #include "core/balls.h"
 #include "core/bvh.h"
 #include "core/intersect.h"
+#include "core/nff_reader.h"
+#include "core/polygon_outline.h"
 #include "core/whitted.h"
 
 namespace raycube::core {
@@ -84,11 +88,57 @@ void BM_NearestHit_Cone(benchmark::State& state) {
   runNearestHit(state, cone, raysTowardsOrigin(1.0, 5));
 }
 
+// The first gear face of scenes/gears4.nff (144 vertices, 36 teeth), and rays from 3 face-widths above it
+// towards random points of its bounding box: about half of them meet the face, the rest pass between teeth
+// or beside the gear.
+struct GearFace {
+  std::vector<Vec3> vertices;
+  std::vector<Ray> rays;
+};
+const GearFace& gearFace() {
+  static const GearFace face = [] {
+    GearFace f;
+    for (const Object& object : readNff(RAYCUBE_SOURCE_DIR "/scenes/gears4.nff").objects)
+      if (const auto* p = std::get_if<Polygon>(&object.shape); p && p->outline) {
+        f.vertices = p->vertices;
+        break;
+      }
+    Box box;
+    for (const Vec3& v : f.vertices) box.extend(v);
+    const Vec3 normal = PolygonOutline(f.vertices).normal();
+    const double width = std::max({box.extent().x, box.extent().y, box.extent().z});
+    std::mt19937_64 random(8);
+    std::uniform_real_distribution<double> uniform(0, 1);
+    for (int i = 0; i < kRays; ++i) {
+      const Vec3 target = box.lo + Vec3(uniform(random), uniform(random), uniform(random)) * box.extent();
+      const Vec3 origin = box.center() + 3 * width * normal + width * (randomUnit(random) * 0.5);
+      f.rays.push_back(Ray{origin, glm::normalize(target - origin), 0, kInfinity});
+    }
+    return f;
+  }();
+  return face;
+}
+
+// Before: the polygon as the fan of triangles around vertex 0 (a patch is still tested that way).
+void BM_NearestHit_GearFace_Fan(benchmark::State& state) {
+  const GearFace& face = gearFace();
+  const Object fan{Patch{face.vertices, std::vector<Vec3>(face.vertices.size(), Vec3(0, 0, 1))}, 0, false};
+  runNearestHit(state, fan, face.rays);
+}
+
+// Now: the banded outline.
+void BM_NearestHit_GearFace_Outline(benchmark::State& state) {
+  const GearFace& face = gearFace();
+  runNearestHit(state, Object{Polygon(face.vertices), 0, false}, face.rays);
+}
+
 BENCHMARK(BM_NearestHit_SphereHit);
 BENCHMARK(BM_NearestHit_SphereMiss);
 BENCHMARK(BM_NearestHit_Quad);
 BENCHMARK(BM_NearestHit_PatchTriangle);
 BENCHMARK(BM_NearestHit_Cone);
+BENCHMARK(BM_NearestHit_GearFace_Fan);
+BENCHMARK(BM_NearestHit_GearFace_Outline);
 
 // balls2 (91 spheres and the floor) and its BVH, built once.
 struct Balls2 {

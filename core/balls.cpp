@@ -75,8 +75,10 @@ void addFlake(Scene& scene, const std::array<Vec3, 9>& directions, int depth, co
   } else if (axis.z <= -1.0) {
     orient = rotateY(std::numbers::pi);
   } else {
-    const Vec3 rotationAxis = glm::normalize(glm::cross(Vec3(0, 0, 1), axis));
-    orient = rotateAxis(rotationAxis, std::acos(axis.z));
+    // lib_normalize_vector leaves a zero vector as it is: an axis a rounding step off +Z (from size 5 on)
+    // has no rotation axis, and the matrix is then the identity scaled by cos(angle), not NaN.
+    const Vec3 across = glm::cross(Vec3(0, 0, 1), axis);
+    orient = rotateAxis(glm::dot(across, across) > 0 ? glm::normalize(across) : across, std::acos(axis.z));
   }
   const double scale = radius * (1.0 + kChildRatio);
   for (const Vec3& direction : directions) {

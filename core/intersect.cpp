@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/overloaded.h"
+#include "core/polygon_outline.h"
 
 namespace raycube::core {
 namespace {
@@ -89,6 +90,23 @@ TriangleHit<Real> hitFan(const std::vector<Vec3>& vertices, const BasicRay<Real>
   return best;
 }
 
+// A concave polygon: its plane, then the even-odd rule on its outline at the point met. The plane and t are
+// in Real; the point's coordinates go to the outline as they are (a float converts exactly to double).
+template <class Real>
+Real hitOutline(const PolygonOutline& outline, const BasicRay<Real>& ray, Real tMax) {
+  const V<Real> normal(outline.normal());
+  const Real along = glm::dot(normal, ray.direction);
+  if (along == 0) return kNone<Real>;
+  const Real t = (Real(outline.offset()) - glm::dot(normal, ray.origin)) / along;
+  if (!(t > ray.tMin && t < tMax)) return kNone<Real>;
+  return outline.contains(Vec3(ray.at(t))) ? t : kNone<Real>;
+}
+
+template <class Real>
+Real hitPolygon(const Polygon& polygon, const BasicRay<Real>& ray, Real tMax) {
+  return polygon.outline ? hitOutline(*polygon.outline, ray, tMax) : hitFan(polygon.vertices, ray, tMax, nullptr).t;
+}
+
 // Open cone or cylinder about the axis base->apex; radius varies linearly r(s) = r0 + k s, 0 <= s <= h.
 template <class Real>
 struct ConeFrame {
@@ -145,7 +163,7 @@ template <class Real>
 Real nearestHit(const Object& object, const BasicRay<Real>& ray, std::type_identity_t<Real> tMax) {
   return std::visit(Overloaded{[&](const Sphere& s) { return hitSphere(s, ray, tMax); },
                                [&](const Cone& c) { return hitCone(c, ray, tMax); },
-                               [&](const Polygon& p) { return hitFan(p.vertices, ray, tMax, nullptr).t; },
+                               [&](const Polygon& p) { return hitPolygon(p, ray, tMax); },
                                [&](const Patch& p) { return hitFan(p.vertices, ray, tMax, nullptr).t; }},
                     object.shape);
 }

@@ -44,7 +44,10 @@ struct Hit {
   bool closerThan(const Hit& other) const { return t < other.t || (t == other.t && object < other.object); }
 };
 
-// One ray-object test, counted by primitive kind (and, for polygons, by vertex) for the cost models.
+// One ray-object test, counted by primitive kind (and, for polygons, by vertex) for the cost models. The
+// vertex count is what the paper's iPSC code paid (every vertex, whatever the polygon); raycube's own test of
+// a concave polygon looks at the few edges of one band (core/polygon_outline.h), but the emulated machine
+// keeps the 1988 cost.
 inline void countTest(TraceCounters& counters, const Object& object) {
   ++counters.intersectionTests;
   ++counters.testsByShape[object.shape.index()];

@@ -463,15 +463,15 @@ class NffParser {
 
   void readPolygon(const Line& line, Object& object) {
     const std::size_t count = vertexCount(line, "'p'");
-    Polygon polygon;
-    polygon.vertices.reserve(count);
+    std::vector<Vec3> vertices;
+    vertices.reserve(count);
     for (std::size_t i = 0; i < count; ++i) {
       const auto [v, vertexLine] = expectNumberLine<3>(
           fmt::format("vertex {} of {} of the 'p' at line {} (x y z)", i + 1, count, line.number));
-      polygon.vertices.push_back(vec(v.data()));
+      vertices.push_back(vec(v.data()));
     }
-    requirePlanarNormal(line, polygon.vertices, "a polygon");
-    object.shape = std::move(polygon);
+    requirePlanarNormal(line, vertices, "a polygon");
+    object.shape = Polygon(std::move(vertices));
   }
 
   void readPatch(const Line& line, Object& object) {

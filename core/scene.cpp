@@ -5,11 +5,17 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "core/overloaded.h"
+#include "core/polygon_outline.h"
 #include "core/ray.h"
 
 namespace raycube::core {
+
+Polygon::Polygon(std::vector<Vec3> points)
+    : vertices(std::move(points)),
+      outline(isConvex(vertices) ? nullptr : std::make_shared<const PolygonOutline>(vertices)) {}
 
 SceneFeatures Scene::features() const {
   SceneFeatures f;
@@ -147,7 +153,9 @@ Scene scaledBy(Scene scene, double factor) {
                             c.apexRadius *= factor;
                           },
                           [&](Polygon& p) {
-                            for (Vec3& v : p.vertices) v *= factor;
+                            std::vector<Vec3> vertices = std::move(p.vertices);
+                            for (Vec3& v : vertices) v *= factor;
+                            p = Polygon(std::move(vertices));
                           },
                           [&](Patch& p) {  // vertices only, never the normals
                             for (Vec3& v : p.vertices) v *= factor;

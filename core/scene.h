@@ -2,6 +2,7 @@
 // The scene as NFF describes it (shared/spd/NFF.TXT): one camera, a background, positional lights,
 // materials ("f" lines) and primitives. The renderers and the machine read only this.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -56,9 +57,16 @@ struct Cone {
   double apexRadius = 1;
 };
 
-// NFF "p": planar convex-or-not polygon, counter-clockwise; normal from the first three vertices.
+class PolygonOutline;
+
+// NFF "p": planar convex-or-not polygon, counter-clockwise; normal from the first three vertices. A convex
+// one is tested as the fan of triangles around vertex 0; a concave one carries its outline (the fan would
+// cover its notches too): see core/polygon_outline.h.
 struct Polygon {
-  std::vector<Vec3> vertices;
+  explicit Polygon(std::vector<Vec3> vertices);
+
+  std::vector<Vec3> vertices;                     // to move them, make a new Polygon: the outline follows
+  std::shared_ptr<const PolygonOutline> outline;  // null when convex; shared by every copy of the object
 };
 
 // NFF "pp": polygon with per-vertex normals for smooth shading (triangles in the SPD).

@@ -24,6 +24,7 @@
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "host/chart.h"
+#include "host/csv_chart.h"
 #include "host/load_chart.h"
 #include "host/machine.h"
 #include "host/machine_checks.h"
@@ -557,6 +558,31 @@ void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
       ->check(CLI::ExistingFile);
 }
 
+struct PlotCommand {
+  std::string csv;
+  std::string output = "out/plot.png";
+  CsvChartStyle style;
+};
+
+// `raycube plot T.csv`: a line chart of a table measured elsewhere (benchmarks/spd_benchmark.sh).
+int runPlot(const PlotCommand& cmd) {
+  writeChart(lineChartFromCsv(cmd.csv, cmd.style), ensureParent(cmd.output));
+  std::cout << "wrote " << cmd.output << '\n';
+  return 0;
+}
+
+void addPlotCommand(CLI::App& app, PlotCommand& cmd) {
+  CLI::App* plot = app.add_subcommand(
+      "plot", "Line chart of a CSV table: first column x (its heading names the axis), one series per column");
+  plot->add_option("csv", cmd.csv, "The table")->required()->check(CLI::ExistingFile);
+  plot->add_option("-o,--output", cmd.output, "The chart (.png or .svg)");
+  plot->add_option("--title", cmd.style.title, "Chart title");
+  plot->add_option("--caption", cmd.style.caption, "Line under the chart: where the data came from");
+  plot->add_option("--y-label", cmd.style.yLabel, "y axis label, with its unit");
+  plot->add_flag("--log-x", cmd.style.logX, "Logarithmic x axis");
+  plot->add_flag("--log-y", cmd.style.logY, "Logarithmic y axis");
+}
+
 struct CompareCommand {
   std::string first, second;
   std::string diffPath;
@@ -596,6 +622,8 @@ int runCommandLine(int argc, char** argv) {
   addTradeoffCommand(app, tradeoffCmd);
   ScalingCommand scalingCmd;
   addScalingCommand(app, scalingCmd);
+  PlotCommand plotCmd;
+  addPlotCommand(app, plotCmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -611,6 +639,7 @@ int runCommandLine(int argc, char** argv) {
     if (app.got_subcommand("compare")) return runCompare(compareCmd);
     if (app.got_subcommand("tradeoff")) return runTradeoff(tradeoffCmd);
     if (app.got_subcommand("scaling")) return runScaling(scalingCmd);
+    if (app.got_subcommand("plot")) return runPlot(plotCmd);
   } catch (const CLI::ValidationError& e) {
     std::cerr << "raycube: " << e.what() << '\n';
     return 2;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -98,6 +100,19 @@ TEST(Balls, SphereCountGrowsByPowersOfNine) {
   EXPECT_EQ(makeBalls(1).objects.size(), 1u + 10u);
   EXPECT_EQ(makeBalls(3).objects.size(), 1u + 820u);
   EXPECT_EQ(makeBalls(5).objects.size(), 1u + 66430u);
+}
+
+// From size 5 on, some children's axes are a rounding step off +Z and have no rotation axis: balls.c keeps
+// the zero vector (lib_normalize_vector), where normalizing it gave NaN spheres and crashed the BVH build.
+TEST(Balls, Size5HasOnlyFiniteSpheres) {
+  const Scene scene = makeBalls(5);
+  ASSERT_EQ(scene.objects.size(), 66431u);
+  for (const Object& object : scene.objects)
+    if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
+      ASSERT_TRUE(std::isfinite(sphere->center.x) && std::isfinite(sphere->center.y) &&
+                  std::isfinite(sphere->center.z))
+          << "a sphere of radius " << sphere->radius;
+    }
 }
 
 TEST(Balls, RejectsSizesOutsideOneToSix) {
