@@ -81,8 +81,9 @@ class LogicalProcessor {
   // Waiting on full neighbour FIFOs (3.6's locked processors), not merely idle.
   bool blocked() const { return backlog() > 0; }
   NodeStats stats() const;
-  // Primary rays shot so far; safe to read from another thread (progress reporting).
-  long long primariesShot() const { return primariesShot_.load(std::memory_order_relaxed); }
+  // Ray segments evaluated here (stats().processed.totalRays()) as of the last step that worked; safe to
+  // read from another thread: the host's progress.
+  std::uint64_t segmentsEvaluated() const { return segmentsEvaluated_.load(std::memory_order_relaxed); }
 
  private:
   // Synthesis task
@@ -102,6 +103,7 @@ class LogicalProcessor {
   bool flushOverflow();
   void onReceived(const Message& message);
   Step idleStep();
+  void publishProgress();
   bool passive() const;
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
@@ -115,7 +117,7 @@ class LogicalProcessor {
   std::vector<core::BasicBvh<Real>> lightVolumes_;  // per light, when light rays are traced where they start
   std::vector<core::BasicBvh<Real>> rearLightVolumes_;  // per light, for light rays starting behind the eye
   long long nextPrimary_ = 0;
-  std::atomic<long long> primariesShot_{0};
+  std::atomic<std::uint64_t> segmentsEvaluated_{0};  // written by this node only, once per step that worked
   std::vector<Message> local_;                   // rays spawned here, still to evaluate here
   const std::vector<int>& neighbours_;           // processors across this region's faces
   std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused
