@@ -13,7 +13,7 @@
 // The counter node_speed is flop-equivalents per second of trace time.
 #include <benchmark/benchmark.h>
 
-#include "core/balls.h"
+#include "benchmark_scenes.h"
 #include "host/emulated_platform.h"
 #include "host/machine.h"
 #include "host/sequential_renderers.h"
@@ -23,10 +23,7 @@ namespace {
 
 constexpr int kSide = 128;
 
-const core::Scene& balls2() {
-  static const core::Scene scene = core::makeBalls(2);
-  return scene;
-}
+using benchmarks::balls2;
 
 RenderSettings oneThread() {
   RenderSettings s;
