@@ -92,13 +92,6 @@ void Progress::phase(const std::string& name, double expectedWork) {
   notify();
 }
 
-void Progress::setDone(std::uint64_t done) {
-  std::uint64_t before = line_->done_.load(std::memory_order_relaxed);
-  while (before < done && !line_->done_.compare_exchange_weak(before, done, std::memory_order_relaxed)) {
-  }
-  line_->notify();
-}
-
 void Progress::setWork(std::uint64_t done, double expectedWork) {
   {
     std::lock_guard lock(line_->mutex_);
@@ -117,10 +110,6 @@ void Progress::listen(Listener listener) { line_->listener_ = std::move(listener
 
 void Progress::notify() {
   if (listener_) listener_(snapshot());
-}
-
-void Progress::expectWork(double expectedWork) {
-  line_->expected_.store(expectedWork, std::memory_order_relaxed);
 }
 
 ProgressSnapshot Progress::snapshot() const {

@@ -46,21 +46,18 @@ class Progress {
 
   // Starts a phase: the work counter restarts from 0, `expectedWork` units are expected (0: unknown).
   void phase(const std::string& name, double expectedWork = 0);
-  // A better estimate of the current phase's total work.
-  void expectWork(double expectedWork);
   // `done` more units finished (any thread).
   void advance(std::uint64_t done) { line_->done_.fetch_add(done, std::memory_order_relaxed); }
-  // Units finished so far, for a driver that sums counters kept elsewhere (the machine's rays finished);
-  // a smaller count than one given before is ignored (one driver thread).
-  void setDone(std::uint64_t done);
-  // Both at once, so no snapshot sees one without the other (the machine's work and its estimate).
+  // For a driver that sums counters kept elsewhere (the machine's processors): the units done so far and
+  // a better estimate of the phase's total, at once, so no snapshot sees one without the other. A smaller
+  // count than one given before is ignored.
   void setWork(std::uint64_t done, double expectedWork);
   // The phase's work is all done, whatever the estimate said: 100%, nothing left.
   void complete();
   // The fraction never goes backwards within a phase (a raised estimate holds it until the work catches
   // up), never reaches 1 before complete(), and restarts with each phase.
   ProgressSnapshot snapshot() const;
-  // Called with a snapshot at every phase, setDone and complete (not at advance, the workers' hot path),
+  // Called with a snapshot at every phase, setWork and complete (not at advance, the workers' hot path),
   // on the thread that made the change: what a test or a report watches.
   using Listener = std::function<void(const ProgressSnapshot&)>;
   void listen(Listener listener);

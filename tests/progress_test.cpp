@@ -38,9 +38,9 @@ TEST(Progress, FractionFollowsTheWorkAndRestartsWithEachPhase) {
   progress.advance(200);
   progress.advance(50);
   EXPECT_DOUBLE_EQ(progress.snapshot().fraction, 0.25);
-  progress.setDone(600);
+  progress.setWork(600, 1000);
   EXPECT_DOUBLE_EQ(progress.snapshot().fraction, 0.6);
-  progress.expectWork(500);
+  progress.setWork(600, 500);
   EXPECT_DOUBLE_EQ(progress.snapshot().fraction, 0.99) << "a lowered estimate: nearly done, not done";
   progress.phase("writing");
   EXPECT_EQ(progress.snapshot().phase, "writing");
@@ -58,20 +58,20 @@ TEST(Progress, NeverClaimsTheEndBeforeIt) {
 TEST(Progress, NeverGoesBackwardsWithinAPhase) {
   Progress progress(false);
   progress.phase("tracing", 1000);
-  progress.setDone(600);
+  progress.setWork(600, 1000);
   EXPECT_DOUBLE_EQ(progress.snapshot().fraction, 0.6);
-  progress.setDone(400);  // a late, smaller count
+  progress.setWork(400, 1000);  // a late, smaller count
   EXPECT_DOUBLE_EQ(progress.snapshot().fraction, 0.6);
-  progress.expectWork(2000);  // a raised estimate holds the fraction until the work catches up
+  progress.setWork(600, 2000);  // a raised estimate holds the fraction until the work catches up
   EXPECT_DOUBLE_EQ(progress.snapshot().fraction, 0.6);
-  progress.setDone(1600);
+  progress.setWork(1600, 2000);
   EXPECT_DOUBLE_EQ(progress.snapshot().fraction, 0.8);
 }
 
 TEST(Progress, CompleteMeansAllOfThePhase) {
   Progress progress(false);
   progress.phase("tracing", 1000);
-  progress.setDone(10);
+  progress.setWork(10, 1000);
   progress.complete();
   const ProgressSnapshot s = progress.snapshot();
   EXPECT_EQ(s.fraction, 1.0);
@@ -87,7 +87,7 @@ TEST(Progress, ListenersHearEveryPhaseAndCount) {
   progress.listen([&](const ProgressSnapshot& s) { heard.push_back(s); });
   progress.phase("tracing", 100);
   progress.advance(5);  // the workers' hot path stays silent
-  progress.setDone(50);
+  progress.setWork(50, 100);
   progress.complete();
   ASSERT_EQ(heard.size(), 3u);
   EXPECT_EQ(heard[0].phase, "tracing");
