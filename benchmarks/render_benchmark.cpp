@@ -5,7 +5,7 @@
 //   render_benchmark --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
-#include "core/balls.h"
+#include "benchmark_scenes.h"
 #include "host/sequential_renderers.h"
 
 namespace raycube::host {
@@ -13,10 +13,7 @@ namespace {
 
 constexpr int kSide = 128;
 
-const core::Scene& balls2() {
-  static const core::Scene scene = core::makeBalls(2);
-  return scene;
-}
+using benchmarks::balls2;
 
 RenderSettings settingsWith(int threads) {
   RenderSettings settings;

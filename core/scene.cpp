@@ -127,10 +127,10 @@ void requireRenderable(const Scene& scene, Precision precision) {
     const bool doubleHolds = std::isfinite(span) && std::ilogb(span) <= spanExponent(Precision::Double);
     throw std::invalid_argument(fmt::format(
         "{} reaches {:.3g} from the origin, {:.3g} times the size of the smallest object ({}): {} arithmetic "
-        "holds a ratio of at most 2^{}, beyond which every other object would vanish; {}",
+        "holds a ratio below 2^{}, beyond which every other object would vanish; {}",
         farthest, largestCoordinate, span,
         placeOf(scene, scene.objects[smallest].line, smallest, keywordOf(scene.objects[smallest])),
-        nameOf(precision), spanExponent(precision),
+        nameOf(precision), spanExponent(precision) + 1,
         doubleHolds ? "render with --precision double" : "move or remove it"));
   }
 }

@@ -15,8 +15,9 @@ namespace {
 // processor render the paper's table-2 case (balls 2, 128x128, depth 5) in 13941 s with the cost table
 // above. Fitted once with `raycube scaling --emulate ipsc1 --procs 1 --fit 13941`.
 constexpr double kIpsc1NodeSpeed = 2138.80;
-// A present-day core: the cost table's flop-equivalents per second this host's image-parallel renderer
-// achieves on balls 2 (`raycube scaling --calibrate`, README).
+// A present-day core: the cost table's flop-equivalents per second one core of this host achieves on
+// balls 2, measured by benchmarks/cluster_calibration_benchmark.cpp (node_speed; README, "On a present-day
+// cluster") and copied here by hand.
 constexpr double kClusterNodeSpeed = 4.0e8;
 
 std::map<std::string, double CostTable::*> costFields() {

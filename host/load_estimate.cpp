@@ -71,7 +71,8 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
     ScreenSegment s;
     const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Shadow;
     if (!projectSegment(view, ray.ray, point ? ray.ray.tMin : tEnd, zNear, s)) return;
-    s.weight = metric == LoadMetric::Rays ? 1.0 : double(1 + work);
+    s.work = double(work);
+    s.weight = metric == LoadMetric::Rays ? 1.0 : 1 + s.work;
     sample.segments.push_back(s);
   };
   // One sample per window, at its centre (3.7.1: "choosing one pixel in each window").
@@ -140,6 +141,16 @@ std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, co
     }
   }
   return loads;
+}
+
+ExpectedWork expectedWork(const std::vector<node::SampleRect>& areas, const LoadSample& sample) {
+  LoadSample reweighed = sample;
+  for (ScreenSegment& s : reweighed.segments) s.weight = 1;
+  ExpectedWork expected;
+  expected.segments = estimateLoads(areas, reweighed, LoadMetric::Rays);
+  for (ScreenSegment& s : reweighed.segments) s.weight = 1 + s.work;
+  expected.work = estimateLoads(areas, reweighed, LoadMetric::Cost);
+  return expected;
 }
 
 }  // namespace raycube::host

@@ -22,6 +22,7 @@ enum class LoadMetric : std::uint8_t {
 struct ScreenSegment {
   double x0, y0, x1, y1;
   double weight;  // 1 (rays) or the ray's cost
+  double work = 0;  // the sub-sampled ray's traversal steps and intersection tests
 };
 
 struct LoadSample {
@@ -50,5 +51,13 @@ bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, doubl
 // Estimated load of each area: the weights of the segment pieces inside it, times raysPerSegment.
 std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
                                   LoadMetric metric);
+
+// What each area's processor will do, for progress: the ray segments it will evaluate (every piece of a
+// split ray counts, as in the ray metric), and their work, each segment weighing one plus its sub-sampled
+// twin's steps and tests, shared by length (as in the cost metric, unscaled), whatever metric partitioned.
+struct ExpectedWork {
+  std::vector<double> segments, work;
+};
+ExpectedWork expectedWork(const std::vector<node::SampleRect>& areas, const LoadSample& sample);
 
 }  // namespace raycube::host

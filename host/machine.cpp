@@ -11,6 +11,7 @@
 #include "host/hypercube_mapping.h"
 #include "host/machine_engine.h"
 #include "host/machine_checks.h"
+#include "host/machine_progress.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
 
@@ -207,6 +208,7 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
   requireMachineFits(machine, view);  // phase 1
+  Progress progress("partitioning", 0, settings.progress);
   const core::Whitted shading(scene, settings.shading);
   // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
   const LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
@@ -217,6 +219,7 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   // The scene is the caller's and outlives the render: the context shares it without owning it.
   const node::MachineContext context{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene), view,
                                      settings.shading, partition(view, load, machine), std::move(boxes)};
+  progress.phase("pruning");
   std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(),
                                                       context.eyeBoxes, machine);
   RenderResult result;
@@ -229,28 +232,31 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   out.settings = machine;
   mapOntoHypercube(context.regions, machine, out);
   Accumulator host(view);
+  std::vector<node::SampleRect> areas;
+  for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
   MachineRun run;
   auto traceStart = Clock::now();
   {
-    Progress progress("machine", std::uint64_t(view.samplesX()) * view.samplesY(), settings.progress);
-    long long reported = 0;
+    progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
+    // Each processor's segments evaluated, against 3.7.1's sub-sampled estimate of its segments and work.
+    const MachineProgress work(expectedWork(areas, load));
     EngineHooks hooks;
     hooks.host = &host;
     hooks.synthesisStarts = [&] {
       result.preprocessSeconds = secondsSince(start);
       traceStart = Clock::now();
+      progress.phase("tracing", work.workOf({}).expected);
     };
-    hooks.progress = [&](long long shot) {
-      progress.advance(std::uint64_t(shot - reported));
-      reported = shot;
+    hooks.progress = [&](const std::vector<std::uint64_t>& evaluated) {
+      const MachineProgress::Work w = work.workOf(evaluated);
+      progress.setWork(std::uint64_t(w.done), w.expected);
     };
     run = makeEngine<Real>(machine, out.hypercubeNode)->run(context, std::move(setups), hooks);
+    progress.complete();
   }
   result.image = host.frame().resolve(view);
   result.traceSeconds = secondsSince(traceStart);
 
-  std::vector<node::SampleRect> areas;
-  for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
   out.contributionsAccumulated = host.count();
   reportRun(std::move(run), estimateLoads(areas, load, machine.loadMetric), load,
             sizeof(node::BasicRayMessage<Real>), result, out);

@@ -17,8 +17,9 @@ namespace raycube::host {
 struct EngineHooks {
   core::ContributionSink* host = nullptr;  // the host's accumulation: called from one thread at a time
   std::function<void()> synthesisStarts;    // every node has subdivided its region: preprocessing ends
-  // Primary rays shot so far, over all processors (progress): called now and then by the host's loop.
-  std::function<void(long long primariesShot)> progress;
+  // Ray segments each processor has evaluated so far, in processor order (progress): called now and then
+  // by the host's loop while tracing.
+  std::function<void(const std::vector<std::uint64_t>& segmentsEvaluated)> progress;
 };
 
 struct MachineRun {

@@ -13,6 +13,11 @@ using namespace std::chrono_literals;
 constexpr double kMaxFractionBeforeTheEnd = 0.99;
 // Below this fraction the rate says too little to extrapolate the time left.
 constexpr double kMinFractionToExtrapolate = 0.01;
+// The time left follows the rate over the last few seconds, sampled now and then.
+constexpr double kRateWindowSeconds = 4;
+constexpr double kRateSampleEverySeconds = 0.25;
+// A recent rate below this share of the phase's mean rate says the work has stalled, not when it ends.
+constexpr double kStalledRateShare = 0.2;
 constexpr auto kReportEvery = 250ms;
 
 std::string duration(double seconds) {
@@ -74,34 +79,74 @@ Progress::~Progress() {
 
 void Progress::phase(const std::string& name, double expectedWork) {
   if (line_ != this) return line_->phase(name, expectedWork);
-  std::lock_guard lock(mutex_);
-  phase_ = name;
-  phaseStart_ = Clock::now();
-  expected_.store(expectedWork, std::memory_order_relaxed);
-  done_.store(0, std::memory_order_relaxed);
+  {
+    std::lock_guard lock(mutex_);
+    phase_ = name;
+    phaseStart_ = Clock::now();
+    expected_.store(expectedWork, std::memory_order_relaxed);
+    done_.store(0, std::memory_order_relaxed);
+    complete_.store(false, std::memory_order_relaxed);
+    shown_ = 0;
+    recent_.clear();
+  }
+  notify();
 }
 
-void Progress::expectWork(double expectedWork) {
-  line_->expected_.store(expectedWork, std::memory_order_relaxed);
+void Progress::setWork(std::uint64_t done, double expectedWork) {
+  {
+    std::lock_guard lock(line_->mutex_);
+    line_->expected_.store(expectedWork, std::memory_order_relaxed);
+    line_->done_.store(std::max(done, line_->done_.load(std::memory_order_relaxed)), std::memory_order_relaxed);
+  }
+  line_->notify();
+}
+
+void Progress::complete() {
+  line_->complete_.store(true, std::memory_order_relaxed);
+  line_->notify();
+}
+
+void Progress::listen(Listener listener) { line_->listener_ = std::move(listener); }
+
+void Progress::notify() {
+  if (listener_) listener_(snapshot());
 }
 
 ProgressSnapshot Progress::snapshot() const {
   if (line_ != this) return line_->snapshot();
   const Clock::time_point now = Clock::now();
   ProgressSnapshot s;
-  {
-    std::lock_guard lock(mutex_);
-    s.phase = phase_;
-    s.phaseSeconds = std::chrono::duration<double>(now - phaseStart_).count();
-  }
+  // Under the lock, so no snapshot mixes a phase with the next one's counters (the reporter and a
+  // listener can take one at the same time).
+  std::lock_guard lock(mutex_);
+  s.phase = phase_;
+  s.phaseSeconds = std::chrono::duration<double>(now - phaseStart_).count();
   s.runSeconds = std::chrono::duration<double>(now - start_).count();
   const double expected = expected_.load(std::memory_order_relaxed);
-  if (expected > 0) {
-    s.fraction = std::min(kMaxFractionBeforeTheEnd, double(done_.load(std::memory_order_relaxed)) / expected);
-    if (s.fraction >= kMinFractionToExtrapolate)
-      s.remainingSeconds = s.phaseSeconds * (1 - s.fraction) / s.fraction;
+  if (complete_.load(std::memory_order_relaxed)) {
+    s.fraction = 1;
+    s.remainingSeconds = 0;
+  } else if (expected > 0) {
+    const double fraction =
+        std::min(kMaxFractionBeforeTheEnd, double(done_.load(std::memory_order_relaxed)) / expected);
+    shown_ = std::max(shown_, fraction);
+    s.fraction = shown_;
+    s.remainingSeconds = remainingSeconds(s.phaseSeconds, s.fraction);
   }
   return s;
+}
+
+double Progress::remainingSeconds(double phaseSeconds, double fraction) const {
+  if (recent_.empty() || phaseSeconds - recent_.back().first >= kRateSampleEverySeconds)
+    recent_.emplace_back(phaseSeconds, fraction);
+  while (recent_.size() > 2 && phaseSeconds - recent_[1].first >= kRateWindowSeconds) recent_.pop_front();
+  if (fraction < kMinFractionToExtrapolate || phaseSeconds <= 0) return -1;
+  auto [since, from] = recent_.front();
+  if (phaseSeconds - since < kRateSampleEverySeconds) since = from = 0;  // too short a window: the whole phase
+  const double recentRate = (fraction - from) / (phaseSeconds - since), meanRate = fraction / phaseSeconds;
+  // Work nearly stopped lately (one processor left with an expensive corner): no honest estimate.
+  if (recentRate < kStalledRateShare * meanRate) return -1;
+  return (1 - fraction) / recentRate;
 }
 
 void Progress::print(const ProgressSnapshot& snapshot) {

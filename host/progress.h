@@ -2,7 +2,8 @@
 // Progress on stderr that tells the truth. A run goes through named phases (reading, estimating,
 // partitioning, pruning, cells, tracing, writing); within a phase a work counter is compared with an
 // estimate of the phase's total work (for tracing: every ray of every tree, estimated from the sub-sampled
-// pixels of 3.7.1), and the time left is extrapolated from the rate so far. A reporter thread prints,
+// pixels of 3.7.1), and the time left is extrapolated from the rate of the last few seconds (a machine's
+// parallelism falls at the end of a run, and the rate with it). A reporter thread prints,
 // quiet during the first second so short runs print nothing; workers pay one relaxed atomic add per batch.
 //
 // stderr is one line, so a process has one progress line: the command line opens it around a whole
@@ -13,6 +14,8 @@
 #include <condition_variable>
 #include <cstdint>
 #include <cstdio>
+#include <deque>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -23,7 +26,7 @@ struct ProgressSnapshot {
   std::string phase;
   double fraction = -1;          // of the phase's estimated work, in [0, 1]; < 0 when no estimate was given
   double phaseSeconds = 0;       // since the phase began
-  double remainingSeconds = -1;  // of the phase, extrapolated; < 0 when unknown
+  double remainingSeconds = -1;  // of the phase, at the recent rate; < 0 when unknown
   double runSeconds = 0;         // since the progress line was opened
 };
 // "tracing  42%  1.2 s, about 1.7 s left" (or "pruning  0.3 s" without an estimate).
@@ -43,19 +46,29 @@ class Progress {
 
   // Starts a phase: the work counter restarts from 0, `expectedWork` units are expected (0: unknown).
   void phase(const std::string& name, double expectedWork = 0);
-  // A better estimate of the current phase's total work.
-  void expectWork(double expectedWork);
   // `done` more units finished (any thread).
   void advance(std::uint64_t done) { line_->done_.fetch_add(done, std::memory_order_relaxed); }
-  // Units finished so far, for a driver that sums counters kept elsewhere (the machine's node stats).
-  void setDone(std::uint64_t done) { line_->done_.store(done, std::memory_order_relaxed); }
+  // For a driver that sums counters kept elsewhere (the machine's processors): the units done so far and
+  // a better estimate of the phase's total, at once, so no snapshot sees one without the other. A smaller
+  // count than one given before is ignored.
+  void setWork(std::uint64_t done, double expectedWork);
+  // The phase's work is all done, whatever the estimate said: 100%, nothing left.
+  void complete();
+  // The fraction never goes backwards within a phase (a raised estimate holds it until the work catches
+  // up), never reaches 1 before complete(), and restarts with each phase.
   ProgressSnapshot snapshot() const;
+  // Called with a snapshot at every phase, setWork and complete (not at advance, the workers' hot path),
+  // on the thread that made the change: what a test or a report watches.
+  using Listener = std::function<void(const ProgressSnapshot&)>;
+  void listen(Listener listener);
 
  private:
   using Clock = std::chrono::steady_clock;
   void open(bool enabled, std::FILE* out, std::chrono::milliseconds quietFor);
   void report(std::chrono::milliseconds quietFor);
   void print(const ProgressSnapshot& snapshot);
+  void notify();
+  double remainingSeconds(double phaseSeconds, double fraction) const;  // under mutex_
 
   Progress* line_;  // this, or the open line it joined
   static std::atomic<Progress*> open_;
@@ -63,11 +76,15 @@ class Progress {
   std::FILE* out_ = stderr;
   std::chrono::milliseconds quietFor_{0};
   Clock::time_point start_ = Clock::now();
-  mutable std::mutex mutex_;  // guards the phase's name and start, and the reporter's state
+  mutable std::mutex mutex_;  // guards the phase's name, start and shown fraction, and the reporter's state
   std::string phase_;
   Clock::time_point phaseStart_ = start_;
   std::atomic<double> expected_{0};
   std::atomic<std::uint64_t> done_{0};
+  std::atomic<bool> complete_{false};
+  mutable double shown_ = 0;  // the highest fraction a snapshot of this phase gave (under mutex_)
+  mutable std::deque<std::pair<double, double>> recent_;  // (phase seconds, fraction): the recent rate
+  Listener listener_;         // set before the work starts
   std::condition_variable stop_;
   bool stopping_ = false;
   bool printed_ = false;

@@ -78,6 +78,38 @@ std::string scalingTable(const std::vector<ScalingPoint>& points, const core::Sc
   return text;
 }
 
+LineChart scalingPlot(const std::vector<ScalingPoint>& points, const core::Scene& scene,
+                      const RenderSettings& settings, const std::string& platform) {
+  LineChart chart;
+  chart.title = fmt::format("Speed-up against processors, in simulated time on {}", platform);
+  chart.caption = fmt::format("{} at {}x{}, depth {}; speed-up against {} processor{}, labels: efficiency",
+                              scene.name, settings.width, settings.height, settings.shading.maxDepth,
+                              points.empty() ? 1 : points.front().processors,
+                              !points.empty() && points.front().processors == 1 ? "" : "s, scaled");
+  chart.x = {.label = "processors", .scale = AxisScale::Log};
+  chart.y = {.label = "speed-up (simulated time of the smallest count / time)", .scale = AxisScale::Log};
+  Series ours{.name = "raycube (simulated)"};
+  for (const ScalingPoint& p : points) {
+    ours.x.push_back(p.processors);
+    ours.y.push_back(p.speedup);
+    ours.pointLabels.push_back(fmt::format("{:.2f}", p.efficiency));
+  }
+  Series ideal{.name = "ideal (efficiency 1)"};
+  if (!points.empty()) ideal = {ideal.name, {ours.x.front(), ours.x.back()}, {ours.x.front(), ours.x.back()}, {}};
+  chart.series.push_back(std::move(ours));
+  if (platform == "ipsc1" && isTable2Case(scene, settings)) {
+    Series paper{.name = "Priol & Bouatouch, table 2 (iPSC/1)"};
+    for (const auto& [processors, seconds] : kTable2Seconds) {
+      paper.x.push_back(processors);
+      paper.y.push_back(kTable2Seconds.at(1) / seconds);
+      paper.pointLabels.push_back(fmt::format("{:.2f}", kTable2Seconds.at(1) / seconds / processors));
+    }
+    chart.series.push_back(std::move(paper));
+  }
+  chart.series.push_back(std::move(ideal));
+  return chart;
+}
+
 void writeScalingCsv(const std::vector<ScalingPoint>& points, const std::filesystem::path& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the CSV", path.string()));

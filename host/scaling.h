@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "host/chart.h"
 #include "host/machine.h"
 #include "host/render_settings.h"
 
@@ -28,6 +29,10 @@ std::vector<ScalingPoint> scalingStudy(const core::Scene& scene, const RenderSet
 // The table, with table 2's published times beside ours for the paper's configuration.
 std::string scalingTable(const std::vector<ScalingPoint>& points, const core::Scene& scene,
                          const RenderSettings& settings);
+// Speed-up against processors (both log), each point labelled with its efficiency, beside the ideal; on
+// the iPSC/1 in table 2's configuration, the paper's published speed-ups as a curve of their own.
+LineChart scalingPlot(const std::vector<ScalingPoint>& points, const core::Scene& scene,
+                      const RenderSettings& settings, const std::string& platform);
 void writeScalingCsv(const std::vector<ScalingPoint>& points, const std::filesystem::path& path);
 
 }  // namespace raycube::host

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <type_traits>
 
@@ -19,7 +20,7 @@ namespace s4u = simgrid::s4u;
 static_assert(std::is_trivially_copyable_v<ProcessorReport>);
 
 // ---- The child's results travel to the parent through a pipe, as tagged records.
-enum class Record : std::uint8_t { Contributions, Reports, Failure };
+enum class Record : std::uint8_t { SynthesisStarts, Contributions, Progress, Reports, Failure };
 
 class PipeWriter {
  public:
@@ -83,10 +84,12 @@ class PipeReader {
   int fd_;
 };
 
-// Contributions go to the parent in blocks, as they arrive at the simulated host.
+// Contributions go to the parent in blocks, as they arrive at the simulated host, each followed by the
+// processors' progress (for the parent's progress line).
 class ContributionsToParent final : public core::ContributionSink {
  public:
-  explicit ContributionsToParent(PipeWriter& out) : out_(out) {}
+  ContributionsToParent(PipeWriter& out, std::function<std::vector<std::uint64_t>()> progress)
+      : out_(out), progress_(std::move(progress)) {}
   ~ContributionsToParent() { flush(); }
   void add(const core::Contribution& c) override {
     block_.push_back(c);
@@ -97,10 +100,13 @@ class ContributionsToParent final : public core::ContributionSink {
     out_.value(Record::Contributions);
     out_.vector(block_);
     block_.clear();
+    out_.value(Record::Progress);
+    out_.vector(progress_());
   }
 
  private:
   PipeWriter& out_;
+  std::function<std::vector<std::uint64_t>()> progress_;
   std::vector<core::Contribution> block_;
 };
 
@@ -260,6 +266,7 @@ void simulate(SimulationInput in, PipeWriter& out) {
   std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> nodes;
   for (int p = 0; p < processors; ++p)
     nodes.push_back(std::make_unique<node::LogicalProcessor<Real>>(in.context, std::move(in.setups[p]), net.endpoint(p)));
+  out.value(Record::SynthesisStarts);  // every node has subdivided its region
   std::vector<ProcessorReport> reports(static_cast<std::size_t>(processors));
   std::vector<Timeline> timelines(static_cast<std::size_t>(processors));
   int finished = 0;
@@ -268,7 +275,11 @@ void simulate(SimulationInput in, PipeWriter& out) {
       driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, reports[p], timelines);
       ++finished;
     });
-  ContributionsToParent toParent(out);
+  ContributionsToParent toParent(out, [&] {
+    std::vector<std::uint64_t> evaluated;
+    for (const auto& n : nodes) evaluated.push_back(n->segmentsEvaluated());
+    return evaluated;
+  });
   bool hostDone = false;
   double makespan = 0;
   s4u::Actor::create("host", wiring.manager, [&] {
@@ -311,13 +322,19 @@ void simulate(SimulationInput in, PipeWriter& out) {
   out.vector(run.timeline);
 }
 
-// The parent's side: contributions to the host's sink as they come, then the reports.
-MachineRun receiveResults(PipeReader& in, core::ContributionSink& host) {
+// The parent's side: the start of synthesis, contributions to the host's sink and progress as they come,
+// then the reports.
+MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
   for (;;) {
     Record tag{};
     if (!in.bytes(&tag, sizeof tag)) throw std::runtime_error("the simulation process ended without results");
-    if (tag == Record::Contributions) {
-      for (const core::Contribution& c : in.vector<core::Contribution>()) host.add(c);
+    if (tag == Record::SynthesisStarts) {
+      if (hooks.synthesisStarts) hooks.synthesisStarts();
+    } else if (tag == Record::Contributions) {
+      for (const core::Contribution& c : in.vector<core::Contribution>()) hooks.host->add(c);
+    } else if (tag == Record::Progress) {
+      const auto evaluated = in.vector<std::uint64_t>();
+      if (hooks.progress) hooks.progress(evaluated);
     } else if (tag == Record::Failure) {
       throw std::runtime_error(in.string());
     } else {
@@ -360,12 +377,11 @@ MachineRun SimulatedMachine<Real>::run(const node::MachineContext& context, std:
     _exit(0);
   }
   ::close(fds[1]);
-  if (hooks.synthesisStarts) hooks.synthesisStarts();
   PipeReader in(fds[0]);
   std::optional<MachineRun> run;
   std::string failure;
   try {
-    run = receiveResults(in, *hooks.host);
+    run = receiveResults(in, hooks);
   } catch (const std::exception& e) {
     failure = e.what();
   }

@@ -67,12 +67,12 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
   // The host thread (3.5.1): accumulate contributions until the ring has proved termination.
   queues::ContributionChannel& channel = interconnect.hostChannel();
   auto accumulate = [&](const core::Contribution& c) { hooks.host->add(c); };
+  std::vector<std::uint64_t> evaluated(nodes.size());
   while (!interconnect.terminated()) {
     channel.drain(accumulate);
     if (hooks.progress) {
-      long long shot = 0;
-      for (const auto& n : nodes) shot += n->primariesShot();
-      hooks.progress(shot);
+      for (std::size_t p = 0; p < nodes.size(); ++p) evaluated[p] = nodes[p]->segmentsEvaluated();
+      hooks.progress(evaluated);
     }
     std::this_thread::sleep_for(node::scheduling::kHostBatchingPause);
     queues::waitUntil(channel.doorbell(), [&] { return interconnect.terminated() || channel.anyPending(); });

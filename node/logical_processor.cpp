@@ -52,7 +52,14 @@ Step LogicalProcessor<Real>::step() {
   progressed |= n > 0;
   // Back-pressure (see scheduling::kBacklogLimit): no new primary rays while rays wait for room.
   if (n == 0 && backlog() < scheduling::kBacklogLimit) progressed |= shootNextPrimary();
-  return progressed ? Step::Worked : idleStep();
+  if (!progressed) return idleStep();
+  publishProgress();
+  return Step::Worked;
+}
+
+template <class Real>
+void LogicalProcessor<Real>::publishProgress() {
+  segmentsEvaluated_.store(stats_.processed.totalRays(), std::memory_order_relaxed);
 }
 
 template <class Real>
@@ -70,7 +77,6 @@ bool LogicalProcessor<Real>::shootNextPrimary() {
   const int sx = area_.x0 + int(sample % area_.width());
   const int sy = area_.y0 + int(sample / area_.width());
   ++nextPrimary_;
-  if (k + 1 == raysPerSample) primariesShot_.store(sample + 1, std::memory_order_relaxed);
   Message m;
   m.ray = core::eyeRayOf<Real>(context_.view, sx, sy, k);
   m.tEnter = m.ray.ray.tMin;

@@ -82,8 +82,9 @@ class LogicalProcessor {
   bool blocked() const { return backlog() > 0; }
   // Counted so far; read between steps (a driver charges simulated time from it after every step).
   const NodeStats& stats() const { return stats_; }
-  // Primary rays shot so far; safe to read from another thread (progress reporting).
-  long long primariesShot() const { return primariesShot_.load(std::memory_order_relaxed); }
+  // Ray segments evaluated here (stats().processed.totalRays()) as of the last step that worked; safe to
+  // read from another thread: the host's progress.
+  std::uint64_t segmentsEvaluated() const { return segmentsEvaluated_.load(std::memory_order_relaxed); }
 
  private:
   // Synthesis task
@@ -104,6 +105,7 @@ class LogicalProcessor {
   void onReceived(const Message& message);
   Step idleStep();
   void countToken();  // the token's visits and rounds into stats_
+  void publishProgress();
   bool passive() const;
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
@@ -117,7 +119,7 @@ class LogicalProcessor {
   std::vector<core::BasicBvh<Real>> lightVolumes_;  // per light, when light rays are traced where they start
   std::vector<core::BasicBvh<Real>> rearLightVolumes_;  // per light, for light rays starting behind the eye
   long long nextPrimary_ = 0;
-  std::atomic<long long> primariesShot_{0};
+  std::atomic<std::uint64_t> segmentsEvaluated_{0};  // written by this node only, once per step that worked
   std::vector<Message> local_;                   // rays spawned here, still to evaluate here
   const std::vector<int>& neighbours_;           // processors across this region's faces
   std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused

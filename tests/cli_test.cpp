@@ -298,5 +298,21 @@ TEST_F(Cli, TradeoffWritesPlotAndReport) {
   EXPECT_EQ(words(slurp(dir_ / "u.svg")), words(svg));
 }
 
+TEST_F(Cli, ScalingWritesPlotAndReport) {
+  const Outcome r =
+      run("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2 --csv s.csv --plot s.svg --report s.html");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string svg = slurp(dir_ / "s.svg");
+  for (const char* words : {">processors</text>", ">raycube (simulated)</text>", ">ideal (efficiency 1)</text>"})
+    EXPECT_NE(svg.find(words), std::string::npos) << words;
+  const std::string html = slurp(dir_ / "s.html");
+  EXPECT_NE(html.find(">Speed-up against processors"), std::string::npos) << "the plot, inline";
+  EXPECT_NE(html.find("efficiency"), std::string::npos) << "the table";
+  EXPECT_EQ(html.find("http"), std::string::npos);
+  const Outcome bad = run("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2 --plot s.gif");
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("--plot"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace raycube::host

@@ -189,11 +189,13 @@ TEST_F(LogicalProcessorTest, ProcessorsSteppedInAnyOrderAgreeWithTheReferenceAnd
         for (int k = 0; k <= (turn + id) % 3; ++k) nodes[id]->step();
     }
     std::array<std::uint64_t, core::kRayKinds> spawned{}, finished{};
-    for (const auto& n : nodes)
+    for (const auto& n : nodes) {
       for (int k = 0; k < core::kRayKinds; ++k) {
         spawned[k] += n->stats().spawned[k];
         finished[k] += n->stats().finished[k];
       }
+      EXPECT_EQ(n->segmentsEvaluated(), n->stats().processed.totalRays()) << "what progress reads, at the end";
+    }
     EXPECT_EQ(spawned, finished);
     for (const auto& [edge, fifo] : net.fifos) EXPECT_TRUE(fifo.empty()) << "a ray left in a FIFO";
     EXPECT_EQ(core::compareImages(imageOf(context, net.contributions), referenceImage()).maxAbs, 0.0)

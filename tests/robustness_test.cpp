@@ -1,10 +1,12 @@
 // Adversarial scenes (issue 11): each class of input that once crashed, overflowed, hung or broke the
 // bit-identity of the modes, held here by a test of its own. The fuzzer's reproducers replay separately
 // (fuzz_regressions_test); these tests say what the user may rely on.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -12,6 +14,7 @@
 #include "core/framebuffer.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
+#include "core/precision.h"
 #include "host/machine.h"
 #include "host/sequential_renderers.h"
 
@@ -152,6 +155,28 @@ TEST(Robustness, AFarAwayObjectIsNamedInsteadOfErasingThePicture) {
   const core::Image image = renderReference(held, tiny()).image;
   EXPECT_GT(image.at(4, 4)[0], 0);
   expectEveryModeMatchesReference(held, tiny());
+}
+
+// Float's limit, exactly where the message puts it: a ratio (largest coordinate over smallest object) just
+// below 2^29 renders the same in every mode; just above, it is refused, naming the far object and the small
+// one, with the advice to render in double.
+TEST(Robustness, TheFloatSpanLimitIsWhereTheMessageSaysAndNamesTheObjects) {
+  const std::string scene = std::string(kView) + "l 3 4 -5\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n";
+  const double limit = std::ldexp(1.0, core::kMaxSpanExponentOf<float> + 1);
+  auto farSphere = [&](double span) {  // its centre + radius over the unit sphere's size, 2
+    return core::parseNff(scene + fmt::format("s {:.17g} 0 0 1\n", 2 * span - 1), "span.nff");
+  };
+  const core::Scene under = farSphere(0.99 * limit);
+  expectEveryModeMatchesReference(under, tiny(core::Precision::Float));
+  try {
+    renderReference(farSphere(1.01 * limit), tiny(core::Precision::Float));
+    FAIL() << "expected std::invalid_argument past float's span";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    for (const char* words : {"span.nff:11: the sphere 's'", "span.nff:10: the sphere 's'", "float arithmetic",
+                              "below 2^29", "--precision double"})
+      EXPECT_NE(message.find(words), std::string::npos) << words << " in: " << message;
+  }
 }
 
 // Class 7: only a regular file has an end: a device or a FIFO is refused by name, at once.

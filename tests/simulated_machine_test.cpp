@@ -131,6 +131,37 @@ TEST(SimulatedMachine, CostFilesAreCheckedWithFileAndLine) {
   std::filesystem::remove(path);
 }
 
+// The scaling plot names itself, its axes and its curves in the SVG's text; the paper's curve only where
+// the paper's numbers apply (its configuration, on the iPSC/1).
+TEST(Scaling, PlotCarriesItsWordsAndThePapersCurveOnlyForTable2) {
+  auto hasText = [](const std::string& svg, const std::string& words) {
+    return svg.find(">" + markupEscaped(words) + "</text>") != std::string::npos;
+  };
+  const core::Scene scene = core::makeBalls(2);
+  RenderSettings settings = settingsFor(128);
+  settings.shading.maxDepth = 5;
+  std::vector<ScalingPoint> points(3);
+  for (auto [p, processors, seconds] : {std::tuple{0, 1, 12000.0}, {1, 4, 4000.0}, {2, 16, 1500.0}}) {
+    points[p].processors = processors;
+    points[p].makespan = seconds;
+    points[p].speedup = 12000 / seconds;
+    points[p].efficiency = points[p].speedup / processors;
+  }
+  const LineChart plot = scalingPlot(points, scene, settings, "ipsc1");
+  const std::string svg = chartSvg(plot);
+  for (const std::string& words : {plot.title, plot.caption, plot.x.label, plot.y.label,
+                                   std::string("raycube (simulated)"), std::string("ideal (efficiency 1)"),
+                                   std::string("Priol & Bouatouch, table 2 (iPSC/1)"), std::string("0.50")})
+    EXPECT_TRUE(hasText(svg, words)) << words;
+  EXPECT_NE(plot.title.find("ipsc1"), std::string::npos);
+  EXPECT_NE(plot.x.label.find("processors"), std::string::npos);
+  ASSERT_EQ(plot.series.size(), 3u);
+  EXPECT_DOUBLE_EQ(plot.series[1].y[1], 13941.0 / 4621) << "table 2's speed-up at 4 processors";
+  EXPECT_EQ(scalingPlot(points, scene, settings, "cluster").series.size(), 2u) << "the paper ran no cluster";
+  EXPECT_EQ(scalingPlot(points, scene, settingsFor(64), "ipsc1").series.size(), 2u)
+      << "not table 2's configuration";
+}
+
 TEST(Scaling, NearSquareGrids) {
   EXPECT_EQ(nearSquareGrid(1), std::make_pair(1, 1));
   EXPECT_EQ(nearSquareGrid(32), std::make_pair(4, 8));
