@@ -18,6 +18,7 @@
 #include "node/light_volume.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
+#include "node/region_database.h"
 #include "node/region_map.h"
 #include "node/machine_context.h"
 #include "node/safra_termination.h"
@@ -25,10 +26,12 @@
 
 namespace raycube::node {
 
-// What the host hands a processor (3.2 steps 1-2): its place, its pixel area, its pruned objects.
+// What the host hands a processor (3.2 steps 1-2): its place, its pixel area, its pruned objects. Every
+// object list holds local indices into `database`.
 struct NodeSetup {
   int id = 0;
   int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
+  RegionDatabase database;                 // the only objects this processor holds
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
   std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
   // 3.7.2: with light cones or pyramids, the objects each light's rays from this region can meet, and the
@@ -106,9 +109,9 @@ class LogicalProcessor {
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
   const MachineContext& context_;
-  const core::Scene& scene_;
-  core::Whitted shading_;
   NodeSetup setup_;
+  const core::Scene& scene_;  // the region's database
+  core::Whitted shading_;
   BasicTransport<Real>& transport_;
   SampleRect area_;
   RegionCells cells_;
