@@ -125,6 +125,8 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
         lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0, core::kInfinity};
     node::NodeSetup setup;
     setup.id = p;
+    setup.cells = machine.emulate && machine.cells == node::CellStructure::Auto ? node::CellStructure::Paper
+                                                                               : machine.cells;
     setup.cellLevel = machine.cellLevel;
     setup.rearObjects = rear;
     for (std::uint32_t o = 0; o < boxes.size(); ++o)

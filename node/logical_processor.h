@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +31,7 @@ namespace raycube::node {
 // object list holds local indices into `database`.
 struct NodeSetup {
   int id = 0;
+  CellStructure cells = CellStructure::Auto;  // the paper's cells or a BVH (Auto: by the region's objects)
   int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
   RegionDatabase database;                 // the only objects this processor holds
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
@@ -48,6 +50,7 @@ struct NodeStats {
   int id = 0;
   SampleRect area;
   std::size_t objects = 0, rearObjects = 0, cells = 0;
+  bool bvh = false;                   // the region's objects in a BVH rather than the paper's cells
   std::size_t lightObjects = 0;       // objects held for light rays (summed over lights)
   std::size_t extraLightObjects = 0;  // of those, objects not already in the region's cells
   std::uint64_t lightRaysTracedLocally = 0;
@@ -94,8 +97,8 @@ class LogicalProcessor {
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double attenuation);
   bool tracedWhereItStarts(const Message& message, double& transmission);
-  template <class Cells>
-  bool visitInterval(const TracedRay& ray, double ta, double tb, const Cells& objects, core::Hit& hit,
+  template <class Objects>
+  bool visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects, core::Hit& hit,
                      double& attenuation);
   void deliver(const core::BasicRayOutcome<Real>& outcome);
   // Communication task
@@ -114,7 +117,9 @@ class LogicalProcessor {
   core::Whitted shading_;
   BasicTransport<Real>& transport_;
   SampleRect area_;
+  CellStructure structure_;  // Paper or Bvh
   RegionCells cells_;
+  std::optional<core::BasicBvh<Real>> regionBvh_;  // the region's objects, with CellStructure::Bvh
   std::vector<core::BasicBvh<Real>> lightVolumes_;  // per light, when light rays are traced where they start
   std::vector<core::BasicBvh<Real>> rearLightVolumes_;  // per light, for light rays starting behind the eye
   long long nextPrimary_ = 0;
