@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/intersect.h"
 #include "core/tolerances.h"
 
 namespace raycube::node {
@@ -117,25 +116,18 @@ bool sphereMayMeetCone(const Vec3& centre, double r, const Cone& cone) {
 }  // namespace
 
 std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::Vec3& light,
-                                                const LightSources& sources, const core::Scene& scene,
-                                                const std::vector<std::uint32_t>& candidates) {
+                                                const LightSources& sources, const BoxTree& objects) {
   if (sources.eyeBox.empty() || mode == LightRayMode::Messages) return {};
-  std::vector<std::uint32_t> kept;
+  auto every = [](const core::Box&) { return true; };
   if (mode == LightRayMode::Pyramid) {
     Pyramid pyramid;
-    if (!buildPyramid(light, sources, pyramid)) return candidates;
-    for (std::uint32_t o : candidates)
-      if (boxMayMeetPyramid(core::boundsOf(scene.objects[o], core::kCellMarginRelative), pyramid))
-        kept.push_back(o);
-    return kept;
+    if (!buildPyramid(light, sources, pyramid)) return objects.query(every);
+    return objects.query([&](const core::Box& b) { return boxMayMeetPyramid(b, pyramid); });
   }
   Cone cone;
-  if (!buildCone(light, sources, cone)) return candidates;
-  for (std::uint32_t o : candidates) {
-    const core::Box b = core::boundsOf(scene.objects[o], core::kCellMarginRelative);
-    if (sphereMayMeetCone(b.center(), 0.5 * glm::length(b.extent()), cone)) kept.push_back(o);
-  }
-  return kept;
+  if (!buildCone(light, sources, cone)) return objects.query(every);
+  return objects.query(
+      [&](const core::Box& b) { return sphereMayMeetCone(b.center(), 0.5 * glm::length(b.extent()), cone); });
 }
 
 }  // namespace raycube::node
