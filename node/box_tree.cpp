@@ -28,21 +28,19 @@ void BoxTree::build(const std::vector<core::Box>& boxes, std::uint32_t begin, st
     centres.extend(boxes[order_[i]].center());
   }
   nodes_[index].box = bounds;
+  nodes_[index].begin = begin;
+  nodes_[index].end = end;
   const core::Vec3 extent = centres.extent();
-  if (end - begin <= kLeafSize || !(std::max({extent.x, extent.y, extent.z}) > 0)) {
-    nodes_[index].first = begin;
-    nodes_[index].count = end - begin;
-    return;
-  }
+  if (end - begin <= kLeafSize || !(std::max({extent.x, extent.y, extent.z}) > 0)) return;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const std::uint32_t mid = begin + (end - begin) / 2;
   std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                    [&](std::uint32_t a, std::uint32_t b) { return boxes[a].center()[axis] < boxes[b].center()[axis]; });
-  // Children next to each other: the left at `first`, the right at `first + 1`, their subtrees after.
+  // Children next to each other, their subtrees after them.
   const std::uint32_t children = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   nodes_.push_back(Node{});
-  nodes_[index].first = children;
+  nodes_[index].children = children;
   build(boxes, begin, mid, children);
   build(boxes, mid, end, children + 1);
 }

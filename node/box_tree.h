@@ -16,13 +16,19 @@ class BoxTree {
   explicit BoxTree(const std::vector<core::Box>& boxes);
 
   // Indices of the boxes passing mayHold(box), whose every enclosing node also passes, in ascending order.
+  // holdsAll(box), when it can tell, says that every box inside `box` passes: the subtree is taken whole.
+  template <class MayHold, class HoldsAll>
+  std::vector<std::uint32_t> query(MayHold&& mayHold, HoldsAll&& holdsAll) const;
   template <class MayHold>
-  std::vector<std::uint32_t> query(MayHold&& mayHold) const;
+  std::vector<std::uint32_t> query(MayHold&& mayHold) const {
+    return query(mayHold, [](const core::Box&) { return false; });
+  }
 
  private:
   struct Node {
     core::Box box;
-    std::uint32_t first = 0, count = 0;  // leaf: range of order_; inner: count 0, children at first, first+1
+    std::uint32_t begin = 0, end = 0;  // the range of order_ its subtree holds
+    std::uint32_t children = 0;        // inner: left child here, right child next; 0: a leaf
   };
   void build(const std::vector<core::Box>& boxes, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
   std::vector<Node> nodes_;
@@ -30,8 +36,8 @@ class BoxTree {
   std::vector<core::Box> leafBoxes_;  // per entry of order_
 };
 
-template <class MayHold>
-std::vector<std::uint32_t> BoxTree::query(MayHold&& mayHold) const {
+template <class MayHold, class HoldsAll>
+std::vector<std::uint32_t> BoxTree::query(MayHold&& mayHold, HoldsAll&& holdsAll) const {
   std::vector<std::uint32_t> found;
   if (nodes_.empty()) return found;
   std::vector<std::uint32_t> stack{0};
@@ -39,13 +45,15 @@ std::vector<std::uint32_t> BoxTree::query(MayHold&& mayHold) const {
     const Node& node = nodes_[stack.back()];
     stack.pop_back();
     if (!mayHold(node.box)) continue;
-    if (node.count == 0) {
-      stack.push_back(node.first);
-      stack.push_back(node.first + 1);
-      continue;
+    if (holdsAll(node.box)) {
+      found.insert(found.end(), order_.begin() + node.begin, order_.begin() + node.end);
+    } else if (node.children != 0) {
+      stack.push_back(node.children);
+      stack.push_back(node.children + 1);
+    } else {
+      for (std::uint32_t i = node.begin; i < node.end; ++i)
+        if (mayHold(leafBoxes_[i])) found.push_back(order_[i]);
     }
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-      if (mayHold(leafBoxes_[i])) found.push_back(order_[i]);
   }
   std::sort(found.begin(), found.end());
   return found;

@@ -43,6 +43,10 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       for (std::uint32_t o : objects) stats_.extraLightObjects += inCells[o] ? 0 : 1;
     }
   }
+  // What only the construction needed: the light lists (the BVH holds their objects) and the eye boxes.
+  setup_.lightObjects = {};
+  setup_.rearLightObjects = {};
+  setup_.database.eyeBoxes = {};
 }
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.

@@ -1,4 +1,5 @@
-// The host's pruning index (node/box_tree.h) finds exactly what testing every box finds, in ascending order.
+// The host's pruning index (node/box_tree.h) finds exactly what testing every box finds, in ascending order,
+// with or without taking whole the subtrees that lie inside the query.
 #include "node/box_tree.h"
 
 #include <gtest/gtest.h>
@@ -33,6 +34,13 @@ TEST(BoxTree, QueryFindsWhatTestingEveryBoxFinds) {
       for (std::uint32_t i = 0; i < boxes.size(); ++i)
         if (overlaps(boxes[i], region)) expected.push_back(i);
       EXPECT_EQ(tree.query([&](const core::Box& b) { return overlaps(b, region); }), expected) << count;
+      // Subtrees found whole when their box lies inside the region: the same answer.
+      auto inside = [&](const core::Box& b) {
+        for (int k = 0; k < 3; ++k)
+          if (b.lo[k] < region.lo[k] || b.hi[k] > region.hi[k]) return false;
+        return true;
+      };
+      EXPECT_EQ(tree.query([&](const core::Box& b) { return overlaps(b, region); }, inside), expected) << count;
     }
     EXPECT_EQ(tree.query([](const core::Box&) { return true; }).size(), boxes.size());
   }
