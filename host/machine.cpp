@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "core/framebuffer.h"
+#include "core/intersect.h"
 #include "host/bsp_partition.h"
 #include "host/hypercube_mapping.h"
 #include "host/machine_engine.h"
@@ -14,6 +15,7 @@
 #include "host/machine_progress.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
+#include "node/box_tree.h"
 
 namespace raycube::host {
 namespace {
@@ -90,6 +92,15 @@ void forEachProcessor(int processors, Visit&& visit) {
     });
 }
 
+// The processor's own copy of the objects its lists name, the lists rewritten into its local indices.
+node::RegionDatabase gatherDatabaseOf(node::NodeSetup& setup, const core::Scene& scene,
+                                      const std::vector<node::EyeBox>& boxes) {
+  std::vector<std::vector<std::uint32_t>*> lists{&setup.objects, &setup.rearObjects};
+  for (auto& objects : setup.lightObjects) lists.push_back(&objects);
+  for (auto& objects : setup.rearLightObjects) lists.push_back(&objects);
+  return node::gatherRegionDatabase(scene, boxes, lists);
+}
+
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
@@ -97,18 +108,24 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
                                            const node::RegionMap& regions, const node::ScreenLines& lines,
                                            const std::vector<node::EyeBox>& boxes,
                                            const MachineSettings& machine) {
-  std::vector<std::uint32_t> all(boxes.size());
-  for (std::uint32_t o = 0; o < all.size(); ++o) all[o] = o;
   std::vector<std::uint32_t> rear;
   for (std::uint32_t o = 0; o < boxes.size(); ++o)
     if (node::reachesBehindEye(boxes[o])) rear.push_back(o);
+  // Spatial queries: the objects' eye boxes for the regions, their world boxes for the light volumes.
+  std::vector<core::Box> eyeFrame, world;
+  for (const node::EyeBox& b : boxes) eyeFrame.push_back(core::Box{b.lo, b.hi});
+  const node::BoxTree inEyeFrame(eyeFrame);
+  const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
+  if (lightVolumes)
+    for (const core::Object& o : scene.objects) world.push_back(core::boundsOf(o, core::kCellMarginRelative));
+  const node::BoxTree inWorld(world);
   std::vector<std::vector<std::uint32_t>> rearLightObjects;
   node::LightSources rearSources;
-  if (machine.lightRays != node::LightRayMode::Messages) {
+  if (lightVolumes) {
     rearSources = rearLightSourcesOf(rear, boxes, view);
     for (const core::Light& light : scene.lights)
       rearLightObjects.push_back(
-          node::objectsInLightVolume(machine.lightRays, light.position, rearSources, scene, all));
+          node::objectsInLightVolume(machine.lightRays, light.position, rearSources, inWorld));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
   forEachProcessor(regions.processors(), [&](int p) {
@@ -117,19 +134,22 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
         lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0, core::kInfinity};
     node::NodeSetup setup;
     setup.id = p;
+    setup.cells = machine.emulate && machine.cells == node::CellStructure::Auto ? node::CellStructure::Paper
+                                                                               : machine.cells;
     setup.cellLevel = machine.cellLevel;
     setup.rearObjects = rear;
-    for (std::uint32_t o = 0; o < boxes.size(); ++o)
-      if (node::mayTouch(boxes[o], region)) setup.objects.push_back(o);
+    setup.objects =
+        inEyeFrame.query([&](const core::Box& b) { return node::mayTouch(node::EyeBox{b.lo, b.hi}, region); });
     setup.lightRays = machine.lightRays;
-    if (machine.lightRays != node::LightRayMode::Messages) {
+    if (lightVolumes) {
       setup.lightSources = lightSourcesOf(region, setup.objects, boxes, view);
       for (const core::Light& light : scene.lights)
         setup.lightObjects.push_back(
-            node::objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, scene, all));
+            node::objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
       setup.rearLightSources = rearSources;
       setup.rearLightObjects = rearLightObjects;
     }
+    setup.database = gatherDatabaseOf(setup, scene, boxes);
     setups[std::size_t(p)] = std::move(setup);
   });
   return setups;
@@ -216,12 +236,10 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   std::vector<node::EyeBox> boxes;
   const double sceneExtent = 2 * scene.largestCoordinate();
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
-  // The scene is the caller's and outlives the render: the context shares it without owning it.
-  const node::MachineContext context{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene), view,
-                                     settings.shading, partition(view, load, machine), std::move(boxes)};
+  const node::MachineContext context{view, settings.shading, partition(view, load, machine)};
   progress.phase("pruning");
-  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(),
-                                                      context.eyeBoxes, machine);
+  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(), boxes,
+                                                      machine);
   RenderResult result;
   result.mode = "machine";
   result.precision = core::kPrecisionOf<Real>;

@@ -1,6 +1,7 @@
 #include "node/logical_processor.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/ray_tree.h"
 #include "core/transmission.h"
@@ -12,12 +13,14 @@ template <class Real>
 LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetup setup,
                                          BasicTransport<Real>& transport)
     : context_(context),
-      scene_(*context.scene),
-      shading_(scene_, context.shading),
       setup_(std::move(setup)),
+      scene_(setup_.database.scene),
+      shading_(scene_, context.shading),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
-      cells_(area_, context.lines(), setup_.cellLevel, setup_.objects, context.eyeBoxes),
+      structure_(chosenFor(setup_.cells, setup_.objects.size())),
+      cells_(area_, context.lines(), structure_ == CellStructure::Bvh ? 0 : setup_.cellLevel,
+             structure_ == CellStructure::Paper, setup_.objects, setup_.database.eyeBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
       inbox_(scheduling::kInboxBatch),
@@ -28,18 +31,22 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.area = area_;
   stats_.objects = cells_.objectCount();
   stats_.rearObjects = setup_.rearObjects.size();
+  stats_.heldObjects = setup_.database.size();
   stats_.cells = cells_.cellCount();
+  stats_.bvh = structure_ == CellStructure::Bvh;
+  if (stats_.bvh || setup_.lightRays != LightRayMode::Messages) databaseBvh_.emplace(scene_, shading_);
   if (setup_.lightRays != LightRayMode::Messages) {
     std::vector<char> inCells(scene_.objects.size(), 0);
     for (std::uint32_t o : setup_.objects) inCells[o] = 1;
     for (const auto& objects : setup_.lightObjects) {
-      lightVolumes_.emplace_back(scene_, shading_, objects);
       stats_.lightObjects += objects.size();
       for (std::uint32_t o : objects) stats_.extraLightObjects += inCells[o] ? 0 : 1;
     }
-    for (const auto& objects : setup_.rearLightObjects)
-      rearLightVolumes_.emplace_back(scene_, shading_, objects);
   }
+  // What only the construction needed: the light lists (the BVH holds their objects) and the eye boxes.
+  setup_.lightObjects = {};
+  setup_.rearLightObjects = {};
+  setup_.database.eyeBoxes = {};
 }
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
@@ -97,11 +104,37 @@ void LogicalProcessor<Real>::evaluateLocalRays() {
   }
 }
 
-// Tests `objects` for the part [ta, tb) of the ray's interval this cell owns. Closest-hit rays stop at the
-// first interval holding a hit; light rays multiply the transmittances they cross and stop at an opaque one.
+namespace {
+
+// The candidates of a cell of the paper's: every object it lists.
+template <class Real, class Visit>
+void forEachCandidate(const std::vector<std::uint32_t>& objects, const core::BasicRay<Real>&, double, double,
+                      const Real&, core::TraceCounters&, Visit&& visit) {
+  for (std::uint32_t object : objects)
+    if (!visit(object)) return;
+}
+
+// The candidates of a region in a BVH: the objects whose boxes the ray meets in [ta, tb] (rounded outwards
+// in Real), nearest first, no farther than tLimit.
 template <class Real>
-template <class Cells>
-bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, double tb, const Cells& objects,
+Real roundedTowards(double t, double direction) {
+  const Real r = Real(t);
+  return (direction < 0 ? double(r) > t : double(r) < t) ? std::nextafter(r, Real(direction)) : r;
+}
+template <class Real, class Visit>
+void forEachCandidate(const core::BasicBvh<Real>& bvh, const core::BasicRay<Real>& ray, double ta, double,
+                      const Real& tLimit, core::TraceCounters& counters, Visit&& visit) {
+  bvh.traverse(ray, std::max(ray.tMin, roundedTowards<Real>(ta, -core::kInfinity)), tLimit, counters, visit);
+}
+
+}  // namespace
+
+// Tests `objects` (a cell's list, or the region's BVH) for the part [ta, tb) of the ray's interval this
+// cell owns. Closest-hit rays stop at the first interval holding a hit; light rays multiply the
+// transmittances they cross and stop at an opaque one.
+template <class Real>
+template <class Objects>
+bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects,
                                            core::Hit& hit, double& attenuation) {
   const core::Scene& scene = scene_;
   const double tLimit = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
@@ -113,24 +146,33 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
     }
     return mailboxT_[object];
   };
+  // How far along the ray a candidate's box may start: the interval's end, then the best hit so far.
+  Real bound = roundedTowards<Real>(std::min(tb, tLimit), core::kInfinity);
   if (ray.kind == core::RayKind::Shadow) {
     crossed_.clear();
-    for (std::uint32_t object : objects) {
+    bool opaque = false;
+    forEachCandidate(objects, ray.ray, ta, tb, bound, stats_.processed, [&](std::uint32_t object) {
       const double t = nearest(object);
-      if (t < ta || t >= tb) continue;
-      if (!shading_.transmissive(object)) {
-        attenuation = 0;
-        return false;
-      }
-      crossed_.push_back(core::Hit{t, object});
+      if (t < ta || t >= tb) return true;
+      opaque = !shading_.transmissive(object);
+      if (!opaque) crossed_.push_back(core::Hit{t, object});
+      return !opaque;
+    });
+    if (opaque) {
+      attenuation = 0;
+      return false;
     }
     if (!crossed_.empty()) attenuation = core::attenuate(attenuation, crossed_, shading_);
     return attenuation > 0;
   }
-  for (std::uint32_t object : objects) {
+  forEachCandidate(objects, ray.ray, ta, tb, bound, stats_.processed, [&](std::uint32_t object) {
     const core::Hit h{nearest(object), object};
-    if (h.t >= ta && h.t < tb && h.closerThan(hit)) hit = h;
-  }
+    if (h.t >= ta && h.t < tb && h.closerThan(hit)) {
+      hit = h;
+      bound = Real(h.t);
+    }
+    return true;
+  });
   return !hit.found();
 }
 
@@ -152,7 +194,8 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   double attenuation = m.attenuation;
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
-    return visitInterval(ray, ta, tb, objects, hit, attenuation);
+    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *databaseBvh_, hit, attenuation)
+                      : visitInterval(ray, ta, tb, objects, hit, attenuation);
   };
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
   auto lastPart = [&](double tEnd) { return tEnd >= tMax || er.partEnd(t) == core::kInfinity; };
@@ -166,7 +209,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     const double tEnd = std::min(er.partEnd(t), tMax);
     if (!er.inFront(t)) {
       // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
-      if ((t < tEnd && !visit(t, tEnd, setup_.rearObjects)) || lastPart(tEnd))
+      if ((t < tEnd && !visitInterval(ray, t, tEnd, setup_.rearObjects, hit, attenuation)) || lastPart(tEnd))
         return finishRay(ray, hit, attenuation);
       t = tEnd;
       if (const int owner = context_.regions.ownerAt(er, t); owner != setup_.id) return leaveFor(owner, t);
@@ -189,23 +232,20 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
 }
 
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of
-// its light's volume: traced here, in one piece, exactly as the reference traces it; no message.
+// its light's volume, all held here: traced in one piece, exactly as the reference traces it; no message.
 template <class Real>
 bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& transmission) {
-  if (lightVolumes_.empty() || m.tEnter != m.ray.ray.tMin || m.attenuation != 1) return false;
+  if (setup_.lightRays == LightRayMode::Messages || m.tEnter != m.ray.ray.tMin || m.attenuation != 1)
+    return false;
   const core::Vec3 origin = eyeFramePoint(context_.view, m.ray.ray.origin);
   auto inside = [&](const core::Box& box) {
     for (int a = 0; a < 3; ++a)
       if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
     return true;
   };
-  const core::BasicBvh<Real>* volume = inside(setup_.lightSources.eyeBox) ? &lightVolumes_[m.ray.light]
-                                       : inside(setup_.rearLightSources.eyeBox)
-                                           ? &rearLightVolumes_[m.ray.light]
-                                           : nullptr;
-  if (volume == nullptr) return false;
+  if (!inside(setup_.lightSources.eyeBox) && !inside(setup_.rearLightSources.eyeBox)) return false;
   ++stats_.lightRaysTracedLocally;
-  transmission = core::shadowTransmission(shading_, *volume, m.ray, stats_.processed, shadowScratch_);
+  transmission = core::shadowTransmission(shading_, *databaseBvh_, m.ray, stats_.processed, shadowScratch_);
   return true;
 }
 
