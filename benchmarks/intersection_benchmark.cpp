@@ -1,6 +1,6 @@
 // The intersection kernels every renderer and every node runs: one ray against one primitive
 // (core::nearestHit), and a ray against the whole balls2 database through the BVH (closest hit and the
-// shadow ray's transmission query), and a ray against one of SPD gears' 144-vertex concave faces, as the fan
+// light ray's transmission query), and a ray against one of SPD gears' 144-vertex concave faces, as the fan
 // of triangles the polygons were tested as before and as the banded outline they are tested as now.
 // items/s is rays per second.
 //
@@ -183,7 +183,7 @@ void BM_BvhClosestHit_Balls2(benchmark::State& state) {
   state.counters["box_tests_per_ray"] = n > 0 ? double(counters.boxTests) / n : 0.0;
 }
 
-// Shadow rays: from the points the random rays hit, towards the first light, as Whitted spawns them.
+// Light rays: from the points the random rays hit, towards the first light, as Whitted spawns them.
 void BM_BvhTransmission_Balls2(benchmark::State& state) {
   const Balls2& b = balls2();
   std::vector<Ray> shadows;

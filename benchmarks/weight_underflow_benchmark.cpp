@@ -9,7 +9,7 @@
 //   ns_per_ray        trace time per traced ray (eye + reflected + shadow) of ks
 //   ks1_ns_per_ray    the same for the ks = 1 renders interleaved with them
 //   slowdown_vs_ks1   their ratio (the target: <= 2)
-//   render_vs_ks1     ratio of whole trace times (small ks spawns fewer shadow rays: zero weights are
+//   render_vs_ks1     ratio of whole trace times (small ks spawns fewer light rays: zero weights are
 //   skipped)
 // denormals:flushed runs both with MXCSR's flush-to-zero and denormals-are-zero bits set: if the slowdown
 // disappears there, denormal arithmetic is its cause.

@@ -39,7 +39,7 @@ class BruteForce {
       }
       crossed.push_back(Hit{t, i});
     }
-    return attenuate(1.0, crossed, shading_);
+    return transmissionThrough(1.0, crossed, shading_);
   }
 
  private:

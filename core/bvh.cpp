@@ -157,7 +157,7 @@ double BasicBvh<Real>::transmission(const BasicRay<Real>& ray, TraceCounters& co
     crossed.push_back(Hit{t, object});
     return true;
   });
-  return blocked ? 0.0 : attenuate(1.0, crossed, shading_);
+  return blocked ? 0.0 : transmissionThrough(1.0, crossed, shading_);
 }
 
 template class BasicBvh<float>;

@@ -23,7 +23,7 @@ Scene makeFacingMirrors(double ks) {
   scene.camera.hither = 0.01;
   scene.camera.width = 64;
   scene.camera.height = 64;
-  // Between the mirrors, so N.L > 0 at every hit: each bounce sends a shadow ray while its weight is not 0.
+  // Between the mirrors, so N.L > 0 at every hit: each bounce sends a light ray while its weight is not 0.
   scene.lights.push_back(Light{Vec3(0, 0, 0.5), Color(1, 1, 1), false});
   scene.materials.push_back(Material{Color(1, 1, 1), 0.1, ks, 10, 0, 1});
 

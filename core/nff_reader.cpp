@@ -347,10 +347,10 @@ class NffParser {
     material.kd = f[3];
     material.ks = f[4];
     material.shine = f[5];
-    material.transmittance = f[6];
+    material.transmission = f[6];
     material.ior = f[7];
     // SPD writes an index of 0 for opaque materials; only light that is transmitted needs a real one.
-    if (material.transmittance > 0 && material.ior <= 0) {
+    if (material.transmission > 0 && material.ior <= 0) {
       fail(
           line.number, line.tokens[8].column,
           fmt::format("expected a positive index of refraction for a transmitting material (T > 0), found {}",

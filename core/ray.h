@@ -9,7 +9,7 @@
 
 namespace raycube::core {
 
-enum class RayKind : std::uint8_t { Eye = 0, Reflected = 1, Refracted = 2, Shadow = 3 };
+enum class RayKind : std::uint8_t { Eye = 0, Reflected = 1, Refracted = 2, Light = 3 };
 inline constexpr int kRayKinds = 4;
 
 template <class Real>
@@ -17,7 +17,7 @@ struct BasicRay {
   Vec3Of<Real> origin{0, 0, 0};
   Vec3Of<Real> direction{0, 0, 1};  // unit length
   Real tMin = 0;                    // eye rays: hither; spawned rays: 0 (their origin is already offset)
-  Real tMax = 0;  // shadow rays: distance to the light (the paper's maxlum); others: infinity
+  Real tMax = 0;  // light rays: distance to the light (the paper's maxlum); others: infinity
 
   Vec3Of<Real> at(Real t) const { return origin + t * direction; }
 
@@ -30,16 +30,16 @@ struct BasicRay {
 using Ray = BasicRay<double>;
 
 // A ray with its place in the tree (Priol & Bouatouch 3.4): the cumulated Ks/Kt product `coeff`, and for a
-// shadow ray the light term it will deliver, scaled by the transmission it finds (the paper's att).
+// light ray the light term it will deliver, scaled by the transmission it finds (the paper's att).
 template <class Real>
 struct BasicTracedRay {
   BasicRay<Real> ray;
-  Vec3Of<Real> weight{0, 0, 0};  // shadow rays only: coeff * light * (diffuse + specular)
+  Vec3Of<Real> weight{0, 0, 0};  // light rays only: coeff * light * (diffuse + specular)
   Real coeff = 1;                // cumulated product of Ks and T along the path
   std::uint32_t sample = 0;
   std::uint8_t depth = 1;  // the eye ray has depth 1 (SPD rule 7)
   RayKind kind = RayKind::Eye;
-  std::uint16_t light = 0;  // shadow rays: which light they go to (kMaxLights keeps it exact)
+  std::uint16_t light = 0;  // light rays: which light they go to (kMaxLights keeps it exact)
 };
 using TracedRay = BasicTracedRay<double>;
 

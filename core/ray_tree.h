@@ -25,7 +25,7 @@ using RayTreeScratch = BasicRayTreeScratch<double>;
 // without transmission that object is tried first for the next light ray to the same light (shadow
 // cache): it blocks again more often than not, and any blocker gives the same answer, 0.
 template <class Database, class Real>
-double shadowTransmission(const Whitted& shading, const Database& database, const BasicTracedRay<Real>& ray,
+double lightRayTransmission(const Whitted& shading, const Database& database, const BasicTracedRay<Real>& ray,
                           TraceCounters& counters, BasicRayTreeScratch<Real>& scratch) {
   if (shading.sceneTransmits()) return database.transmission(ray.ray, counters, scratch.crossed);
   if (scratch.lastBlocker.size() <= ray.light) scratch.lastBlocker.resize(ray.light + 1u, UINT32_MAX);
@@ -59,8 +59,8 @@ void traceRayTree(const Whitted& shading, const Database& database, const BasicT
     scratch.outcome.clear();
     const std::uint64_t workBefore = counters.intersectionTests + counters.boxTests;
     double tEnd = ray.ray.tMax;
-    if (ray.kind == RayKind::Shadow) {
-      shading.finishShadow(ray, shadowTransmission(shading, database, ray, counters, scratch),
+    if (ray.kind == RayKind::Light) {
+      shading.finishLightRay(ray, lightRayTransmission(shading, database, ray, counters, scratch),
                            scratch.outcome);
     } else {
       const Hit hit = database.closestHit(ray.ray, counters);

@@ -22,7 +22,7 @@ SceneFeatures Scene::features() const {
   f.lightCount = lights.size();
   for (const Object& object : objects) {
     const Material& m = materials.at(object.material);
-    f.transmission |= m.transmittance > 0;
+    f.transmission |= m.transmission > 0;
     f.reflection |= m.ks > 0;
     f.spheres |= std::holds_alternative<Sphere>(object.shape);
     f.cones |= std::holds_alternative<Cone>(object.shape);

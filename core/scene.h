@@ -33,13 +33,13 @@ struct Light {
   int line = 0;  // NFF line; 0 for scenes built in code
 };
 
-// NFF "f": colour, Kd, Ks, Phong exponent, transmittance T and index of refraction.
+// NFF "f": colour, Kd, Ks, Phong exponent, transmission T and index of refraction.
 struct Material {
   Color color{1, 1, 1};
   double kd = 0;
   double ks = 0;
   double shine = 0;
-  double transmittance = 0;
+  double transmission = 0;
   double ior = 1;
 };
 

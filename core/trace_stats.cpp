@@ -10,8 +10,8 @@ const char* rayKindName(RayKind kind) {
       return "reflected";
     case RayKind::Refracted:
       return "refracted";
-    case RayKind::Shadow:
-      return "shadow";
+    case RayKind::Light:
+      return "light";
   }
   return "?";
 }

@@ -16,7 +16,8 @@ struct TraceCounters {
   std::uint64_t intersectionTests = 0;          // ray-object tests
   std::array<std::uint64_t, kShapeKinds> testsByShape{};  // the same, by primitive kind (cost models)
   std::uint64_t polygonVerticesTested = 0;                // a polygon's test costs per vertex
-  std::uint64_t boxTests = 0;                   // BVH node or cell steps
+  std::uint64_t boxTests = 0;                   // BVH nodes tested
+  std::uint64_t cellSteps = 0;                  // the machine: cells entered (3.3) by a ray's walk
   std::uint64_t contributions = 0;              // pieces of pixel colour produced (section 3.4)
   std::uint64_t nonFinite = 0;                  // contributions with a NaN/Inf channel (a defect if > 0)
 
@@ -29,6 +30,7 @@ struct TraceCounters {
     for (std::size_t i = 0; i < testsByShape.size(); ++i) testsByShape[i] += o.testsByShape[i];
     polygonVerticesTested += o.polygonVerticesTested;
     boxTests += o.boxTests;
+    cellSteps += o.cellSteps;
     contributions += o.contributions;
     nonFinite += o.nonFinite;
     return *this;

@@ -44,11 +44,11 @@ class View {
   Ray eyeRay(int sx, int sy, int k) const;
   int raysPerSample() const { return raysPerSample_; }
 
-  // The eye frame: x right, y up, z forward (depth).
+  // The camera frame: x right, y up, z forward (depth); the machine's eye frame has y down (node/eye_frame_ray.h).
   Vec3 toEye(const Vec3& world) const;
   Vec3 directionToEye(const Vec3& direction) const;
-  Vec3 fromEye(const Vec3& eyeFrame) const {
-    return eye_ + eyeFrame.x * right_ + eyeFrame.y * up_ + eyeFrame.z * forward_;
+  Vec3 fromCamera(const Vec3& camera) const {
+    return eye_ + camera.x * right_ + camera.y * up_ + camera.z * forward_;
   }
   const Vec3& eye() const { return eye_; }
   double hither() const { return hither_; }

@@ -27,7 +27,7 @@ void Whitted::shadeMiss(const BasicTracedRay<Real>& ray, BasicRayOutcome<Real>& 
 }
 
 template <class Real>
-void Whitted::finishShadow(const BasicTracedRay<Real>& ray, double transmission,
+void Whitted::finishLightRay(const BasicTracedRay<Real>& ray, double transmission,
                            BasicRayOutcome<Real>& out) const {
   if (transmission > 0)
     out.contributions.push_back(Contribution{ray.sample, transmission * Color(ray.weight)});
@@ -39,7 +39,7 @@ void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRay
   using V = Vec3Of<Real>;
   const Object& object = scene_.objects[hit.object];
   const Material& m = scene_.materials[object.material];
-  const Real kd = Real(m.kd), ks = Real(m.ks), transmittance = Real(m.transmittance);
+  const Real kd = Real(m.kd), ks = Real(m.ks), transmission = Real(m.transmission);
   const Real tHit = Real(hit.t);
   const BasicSurfacePoint<Real> sp = surfaceAt(object, ray.ray, tHit);
   const V& d = ray.ray.direction;
@@ -53,7 +53,7 @@ void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRay
     out.contributions.push_back(Contribution{ray.sample, Color(ray.coeff * Real(ambient_) * diffuse)});
 
   const V toViewer = -d;
-  const V shadowOrigin = spawnOrigin(sp.point, ng, tHit);
+  const V lightRayOrigin = spawnOrigin(sp.point, ng, tHit);
   for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
     const V lightPosition(scene_.lights[i].position);
     const V toLight = lightPosition - sp.point;
@@ -61,7 +61,7 @@ void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRay
     if (distance == 0) continue;
     const V l = toLight / distance;
     const Real nl = glm::dot(n, l);
-    if (nl <= 0) continue;  // SPD rule 10: no shadow ray when the normal faces away from the light
+    if (nl <= 0) continue;  // SPD rule 10: no light ray when the normal faces away from the light
     V bracket = diffuse * nl;
     if (m.ks > 0) {
       const Real rv = glm::dot(2 * nl * n - l, toViewer);
@@ -69,37 +69,37 @@ void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRay
     }
     const V weight = ray.coeff * V(lightIntensity_[i]) * bracket;
     if (weight == V(0)) continue;
-    BasicTracedRay<Real> shadow;
-    shadow.ray.origin = shadowOrigin;
-    const V fromOrigin = lightPosition - shadowOrigin;
-    shadow.ray.tMax = glm::length(fromOrigin);
-    shadow.ray.direction = fromOrigin / shadow.ray.tMax;
-    shadow.ray.tMin = 0;
-    shadow.weight = weight;
-    shadow.coeff = ray.coeff;
-    shadow.sample = ray.sample;
-    shadow.depth = ray.depth;
-    shadow.kind = RayKind::Shadow;
-    shadow.light = std::uint16_t(i);
-    out.spawned.push_back(shadow);
+    BasicTracedRay<Real> lightRay;
+    lightRay.ray.origin = lightRayOrigin;
+    const V fromOrigin = lightPosition - lightRayOrigin;
+    lightRay.ray.tMax = glm::length(fromOrigin);
+    lightRay.ray.direction = fromOrigin / lightRay.ray.tMax;
+    lightRay.ray.tMin = 0;
+    lightRay.weight = weight;
+    lightRay.coeff = ray.coeff;
+    lightRay.sample = ray.sample;
+    lightRay.depth = ray.depth;
+    lightRay.kind = RayKind::Light;
+    lightRay.light = std::uint16_t(i);
+    out.spawned.push_back(lightRay);
   }
 
   if (ray.depth >= options_.maxDepth) return;
   Real reflectCoeff = ks;
-  if (m.transmittance > 0) {
+  if (m.transmission > 0) {
     // Snell's law; eta is the ratio of indices across the surface in the ray's direction.
     const Real eta = entering ? Real(1.0 / m.ior) : Real(m.ior);
     const Real cosI = -glm::dot(n, d);
     const Real k = 1 - eta * eta * (1 - cosI * cosI);
     if (k < 0) {
-      reflectCoeff += transmittance;  // total internal reflection: the transmitted share is reflected
-    } else if (worthSpawning(ray.coeff * transmittance)) {
+      reflectCoeff += transmission;  // total internal reflection: the transmitted share is reflected
+    } else if (worthSpawning(ray.coeff * transmission)) {
       BasicTracedRay<Real> refracted;
       refracted.ray.direction = glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n);
       refracted.ray.origin = spawnOrigin(sp.point, -ng, tHit);
       refracted.ray.tMin = 0;
       refracted.ray.tMax = std::numeric_limits<Real>::infinity();
-      refracted.coeff = ray.coeff * transmittance;
+      refracted.coeff = ray.coeff * transmission;
       refracted.sample = ray.sample;
       refracted.depth = std::uint8_t(ray.depth + 1);
       refracted.kind = RayKind::Refracted;
@@ -123,7 +123,7 @@ void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRay
 #define RAYCUBE_WHITTED_FOR(Real)                                                                         \
   template Vec3Of<Real> spawnOrigin(const Vec3Of<Real>&, const Vec3Of<Real>&, Real);                      \
   template void Whitted::shadeMiss(const BasicTracedRay<Real>&, BasicRayOutcome<Real>&) const;            \
-  template void Whitted::finishShadow(const BasicTracedRay<Real>&, double, BasicRayOutcome<Real>&) const; \
+  template void Whitted::finishLightRay(const BasicTracedRay<Real>&, double, BasicRayOutcome<Real>&) const; \
   template void Whitted::shadeHit(const BasicTracedRay<Real>&, const Hit&, BasicRayOutcome<Real>&) const;
 RAYCUBE_WHITTED_FOR(float)
 RAYCUBE_WHITTED_FOR(double)

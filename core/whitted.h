@@ -6,7 +6,7 @@
 // At a hit with material (C, Kd, Ks, Shine, T, ior), for a ray carrying coeff:
 //   ambient     coeff * A * Kd * C                                   sent at once
 //   per light   coeff * I * (Kd * C * (N.L) + Ks * max(0, R.V)^Shine) * transmission(P -> light)
-//               a shadow ray per light with N.L > 0 carries the bracket as its weight
+//               a light ray per light with N.L > 0 carries the bracket as its weight
 //   reflection  a ray with coeff * Ks when Ks > 0 and depth < maxDepth
 //   refraction  a ray with coeff * T when T > 0 and depth < maxDepth (Snell); on total internal reflection
 //               no refraction ray, and the reflected ray carries coeff * (Ks + T) so no energy is lost
@@ -49,16 +49,16 @@ class Whitted {
   void shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRayOutcome<Real>& out) const;
   template <class Real>
   void shadeMiss(const BasicTracedRay<Real>& ray, BasicRayOutcome<Real>& out) const;
-  // A shadow ray that found `transmission` (product of T over the objects it crossed, in t order).
+  // A light ray that found `transmission` (product of T over the objects it crossed, in t order).
   template <class Real>
-  void finishShadow(const BasicTracedRay<Real>& ray, double transmission, BasicRayOutcome<Real>& out) const;
+  void finishLightRay(const BasicTracedRay<Real>& ray, double transmission, BasicRayOutcome<Real>& out) const;
 
   const Scene& scene() const { return scene_; }
-  bool transmissive(std::uint32_t object) const { return transmittanceOf(object) > 0; }
-  double transmittanceOf(std::uint32_t object) const {
-    return scene_.materials[scene_.objects[object].material].transmittance;
+  bool transmissive(std::uint32_t object) const { return transmissionOf(object) > 0; }
+  double transmissionOf(std::uint32_t object) const {
+    return scene_.materials[scene_.objects[object].material].transmission;
   }
-  // The scene has some material with T > 0: shadow rays must multiply transmittances, not stop at the first
+  // The scene has some material with T > 0: light rays must multiply transmissions, not stop at the first
   // hit.
   bool sceneTransmits() const { return sceneTransmits_; }
   int maxDepth() const { return options_.maxDepth; }

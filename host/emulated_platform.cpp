@@ -43,7 +43,7 @@ double CostTable::flopsOf(const node::NodeStats& n) const {
   const core::TraceCounters& p = n.processed;
   return sphereTest * double(p.testsByShape[0]) + coneTest * double(p.testsByShape[1]) +
          polygonTest * double(p.testsByShape[2]) + polygonVertex * double(p.polygonVerticesTested) +
-         patchTest * double(p.testsByShape[3]) + cellStep * double(p.boxTests) +
+         patchTest * double(p.testsByShape[3]) + cellStep * double(p.cellSteps + p.boxTests) +
          raySegment * double(p.totalRays()) + rayFinished * double(sum(n.finished)) +
          raySpawned * double(sum(n.spawned)) + contribution * double(p.contributions) +
          messageSent * double(sum(n.sent)) + messageReceived * double(sum(n.received)) +

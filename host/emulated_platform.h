@@ -20,7 +20,7 @@ struct CostTable {
   double polygonTest = 20;    // plane hit: n.d, (dist - n.o) / n.d, the point
   double polygonVertex = 6;   // the crossing test, per edge
   double patchTest = 45;      // a triangle and the interpolated normal
-  double cellStep = 6;        // one step of the walk through the region's cells (3.3)
+  double cellStep = 6;        // one step of the walk through the region's cells (3.3), or one BVH node tested
   double raySegment = 50;     // a ray taken up in a region: eye-frame conversion, entry cell
   double rayFinished = 60;    // shading where a ray ends: point, normal, Phong terms, or the light term
   double raySpawned = 25;     // a reflected, refracted or light ray: direction, weight, owner lookup

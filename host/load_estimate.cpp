@@ -69,7 +69,7 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
   auto record = [&](const core::TracedRay& ray, double tEnd, std::uint64_t work) {
     ++sample.raysTraced;
     ScreenSegment s;
-    const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Shadow;
+    const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Light;
     if (!projectSegment(view, ray.ray, point ? ray.ray.tMin : tEnd, zNear, s)) return;
     s.work = double(work);
     s.weight = metric == LoadMetric::Rays ? 1.0 : 1 + s.work;

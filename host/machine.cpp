@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "core/framebuffer.h"
+#include "host/framebuffer.h"
 #include "core/intersect.h"
 #include "host/bsp_partition.h"
 #include "host/hypercube_mapping.h"
@@ -192,11 +192,11 @@ class Accumulator final : public core::ContributionSink {
     frame_.add(c);
     ++count_;
   }
-  const core::Framebuffer& frame() const { return frame_; }
+  const Framebuffer& frame() const { return frame_; }
   std::uint64_t count() const { return count_; }
 
  private:
-  core::Framebuffer frame_;
+  Framebuffer frame_;
   std::uint64_t count_ = 0;
 };
 

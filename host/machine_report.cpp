@@ -22,7 +22,8 @@ std::uint64_t sum(const Array& a) {
 }
 
 std::uint64_t costOf(const ProcessorReport& p) {
-  return p.node.processed.intersectionTests + p.node.processed.boxTests;
+  const core::TraceCounters& c = p.node.processed;
+  return c.intersectionTests + c.boxTests + c.cellSteps;
 }
 
 }  // namespace
@@ -58,7 +59,7 @@ std::string machineTable(const MachineReport& report) {
     refused += p.node.refusedPushes;
   }
   std::string text = fmt::format(
-      "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, shadow {}; "
+      "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, light {}; "
       "forwarded {}; refused pushes {}\n",
       report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes,
       byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused);
@@ -127,7 +128,8 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"raysFinished", finished},
                           {"messagesByKind", messages},
                           {"intersectionTests", n.processed.intersectionTests},
-                          {"cellSteps", n.processed.boxTests},
+                          {"cellSteps", n.processed.cellSteps},
+                          {"boxTests", n.processed.boxTests},
                           {"contributions", n.processed.contributions},
                           {"faces(left,right,up,down)", faces},
                           {"forwarded", n.forwarded},

@@ -50,7 +50,7 @@ inline constexpr ProcessorColumn kProcessorColumns[] = {
     {"eye rays", "/raysProcessed/eye"},
     {"reflected rays", "/raysProcessed/reflected"},
     {"refracted rays", "/raysProcessed/refracted"},
-    {"shadow rays", "/raysProcessed/shadow"},
+    {"light rays", "/raysProcessed/light"},
     {"intersection tests", "/intersectionTests"},
     {"cell steps", "/cellSteps"},
     {"forwarded", "/forwarded"},

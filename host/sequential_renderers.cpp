@@ -10,7 +10,7 @@
 
 #include "core/brute_force.h"
 #include "core/bvh.h"
-#include "core/framebuffer.h"
+#include "host/framebuffer.h"
 #include "core/ray_tree.h"
 #include "host/load_estimate.h"
 #include "host/precision_dispatch.h"
@@ -41,7 +41,7 @@ void beginTracing(Progress& progress, const core::Scene& scene, const core::View
 // Traces sample rows [rowBegin, rowEnd) into the frame buffer, with rays in precision Real.
 template <class Real, class Database>
 void traceRows(const core::View& view, const core::Whitted& shading, const Database& database, int rowBegin,
-               int rowEnd, core::Framebuffer& frame, core::TraceCounters& counters, Progress& progress) {
+               int rowEnd, Framebuffer& frame, core::TraceCounters& counters, Progress& progress) {
   core::BasicRayTreeScratch<Real> scratch;
   for (int sy = rowBegin; sy < rowEnd; ++sy) {
     const std::uint64_t before = counters.totalRays();
@@ -61,7 +61,7 @@ RenderResult renderReferenceIn(const core::Scene& scene, const RenderSettings& s
                         settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
   const core::BruteForce database(scene, shading);
-  core::Framebuffer frame(view.samplesX(), view.samplesY());
+  Framebuffer frame(view.samplesX(), view.samplesY());
   RenderResult result;
   result.mode = "reference";
   result.precision = core::kPrecisionOf<Real>;
@@ -84,7 +84,7 @@ RenderResult renderImageParallelIn(const core::Scene& scene, const RenderSetting
                         settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
   const core::BasicBvh<Real> database(scene, shading);
-  core::Framebuffer frame(view.samplesX(), view.samplesY());
+  Framebuffer frame(view.samplesX(), view.samplesY());
   RenderResult result;
   result.mode = "image-parallel";
   result.precision = core::kPrecisionOf<Real>;

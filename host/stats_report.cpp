@@ -28,9 +28,9 @@ std::string summaryText(const core::Scene& scene, const RenderResult& result) {
                                  result.image.height, result.mode, result.workers, nameOf(result.precision));
   text += fmt::format("  preprocessing {:.3f} s, tracing {:.3f} s\n", result.preprocessSeconds,
                       result.traceSeconds);
-  text += fmt::format("  rays: eye {}, reflected {}, refracted {}, shadow {}, total {}\n",
+  text += fmt::format("  rays: eye {}, reflected {}, refracted {}, light {}, total {}\n",
                       c.of(core::RayKind::Eye), c.of(core::RayKind::Reflected),
-                      c.of(core::RayKind::Refracted), c.of(core::RayKind::Shadow), c.totalRays());
+                      c.of(core::RayKind::Refracted), c.of(core::RayKind::Light), c.totalRays());
   text += fmt::format("  intersection tests {}, box tests {}, {:.2f} Mrays/s\n", c.intersectionTests,
                       c.boxTests, megaRaysPerSecond(result));
   if (c.nonFinite > 0) text += fmt::format("  WARNING: {} contributions were NaN or infinite\n", c.nonFinite);

@@ -93,13 +93,13 @@ std::vector<TradeoffRow> measureTradeoff(const core::Scene& scene, const RenderS
 
 std::string tradeoffTable(const std::vector<TradeoffRow>& rows) {
   std::string text =
-      "knob        setting   seconds      eye   reflected  refracted     shadow       rmse   psnr dB    max "
+      "knob        setting   seconds      eye   reflected  refracted      light       rmse   psnr dB    max "
       "err\n";
   for (const TradeoffRow& r : rows)
     text += fmt::format("{:<11} {:>7} {:>9.4f} {:>8} {:>11} {:>10} {:>10} {:>10.3g} {:>9.2f} {:>10.3g}\n",
                         r.knob, r.setting, r.seconds, r.counters.of(core::RayKind::Eye),
                         r.counters.of(core::RayKind::Reflected), r.counters.of(core::RayKind::Refracted),
-                        r.counters.of(core::RayKind::Shadow), r.rmse, r.psnr, r.maxAbs);
+                        r.counters.of(core::RayKind::Light), r.rmse, r.psnr, r.maxAbs);
   return text;
 }
 
@@ -140,11 +140,11 @@ std::string subsampleTable(const std::vector<SubsampleRow>& rows) {
 void writeTradeoffCsv(const std::vector<TradeoffRow>& rows, const std::filesystem::path& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path.string());
-  out << "knob,setting,seconds,eye_rays,reflected_rays,refracted_rays,shadow_rays,rmse,psnr_db,max_error\n";
+  out << "knob,setting,seconds,eye_rays,reflected_rays,refracted_rays,light_rays,rmse,psnr_db,max_error\n";
   for (const TradeoffRow& r : rows)
     out << fmt::format("{},{},{:.6f},{},{},{},{},{:.6g},{:.4f},{:.6g}\n", r.knob, r.setting, r.seconds,
                        r.counters.of(core::RayKind::Eye), r.counters.of(core::RayKind::Reflected),
-                       r.counters.of(core::RayKind::Refracted), r.counters.of(core::RayKind::Shadow), r.rmse,
+                       r.counters.of(core::RayKind::Refracted), r.counters.of(core::RayKind::Light), r.rmse,
                        std::isinf(r.psnr) ? 999.0 : r.psnr, r.maxAbs);
   if (!out) throw std::runtime_error("failed writing " + path.string());
 }

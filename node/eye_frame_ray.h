@@ -20,7 +20,7 @@ inline Vec3 eyeFramePoint(const core::View& view, const Vec3& world) {
   return e;
 }
 inline Vec3 worldFromEyeFrame(const core::View& view, const Vec3& e) {
-  return view.fromEye(Vec3(e.x, -e.y, e.z));
+  return view.fromCamera(Vec3(e.x, -e.y, e.z));
 }
 
 struct EyeFrameRay {

@@ -131,13 +131,13 @@ void forEachCandidate(const core::BasicBvh<Real>& bvh, const core::BasicRay<Real
 
 // Tests `objects` (a cell's list, or the region's BVH) for the part [ta, tb) of the ray's interval this
 // cell owns. Closest-hit rays stop at the first interval holding a hit; light rays multiply the
-// transmittances they cross and stop at an opaque one.
+// transmissions they cross and stop at an opaque one.
 template <class Real>
 template <class Objects>
 bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects,
-                                           core::Hit& hit, double& attenuation) {
+                                           core::Hit& hit, double& transmission) {
   const core::Scene& scene = scene_;
-  const double tLimit = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
+  const double tLimit = ray.kind == core::RayKind::Light ? ray.ray.tMax : core::kInfinity;
   auto nearest = [&](std::uint32_t object) {
     if (mailboxStamp_[object] != rayStamp_) {
       core::countTest(stats_.processed, scene.objects[object]);
@@ -148,7 +148,7 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
   };
   // How far along the ray a candidate's box may start: the interval's end, then the best hit so far.
   Real bound = roundedTowards<Real>(std::min(tb, tLimit), core::kInfinity);
-  if (ray.kind == core::RayKind::Shadow) {
+  if (ray.kind == core::RayKind::Light) {
     crossed_.clear();
     bool opaque = false;
     forEachCandidate(objects, ray.ray, ta, tb, bound, stats_.processed, [&](std::uint32_t object) {
@@ -159,11 +159,11 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
       return !opaque;
     });
     if (opaque) {
-      attenuation = 0;
+      transmission = 0;
       return false;
     }
-    if (!crossed_.empty()) attenuation = core::attenuate(attenuation, crossed_, shading_);
-    return attenuation > 0;
+    if (!crossed_.empty()) transmission = core::transmissionThrough(transmission, crossed_, shading_);
+    return transmission > 0;
   }
   forEachCandidate(objects, ray.ray, ta, tb, bound, stats_.processed, [&](std::uint32_t object) {
     const core::Hit h{nearest(object), object};
@@ -186,22 +186,22 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     std::fill(mailboxStamp_.begin(), mailboxStamp_.end(), 0u);
     rayStamp_ = 1;
   }
-  if (double transmission; ray.kind == core::RayKind::Shadow && tracedWhereItStarts(m, transmission))
+  if (double transmission; ray.kind == core::RayKind::Light && tracedWhereItStarts(m, transmission))
     return finishRay(ray, core::Hit{}, transmission);
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
-  const double tMax = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
+  const double tMax = ray.kind == core::RayKind::Light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
-  double attenuation = m.attenuation;
+  double transmission = m.transmission;
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
-    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *databaseBvh_, hit, attenuation)
-                      : visitInterval(ray, ta, tb, objects, hit, attenuation);
+    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *databaseBvh_, hit, transmission)
+                      : visitInterval(ray, ta, tb, objects, hit, transmission);
   };
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
   auto lastPart = [&](double tEnd) { return tEnd >= tMax || er.partEnd(t) == core::kInfinity; };
   auto leaveFor = [&](int owner, double tExit) {
     m.tEnter = tExit;
-    m.attenuation = attenuation;
+    m.transmission = transmission;
     m.destination = std::uint16_t(owner);
     send(m);
   };
@@ -209,8 +209,8 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     const double tEnd = std::min(er.partEnd(t), tMax);
     if (!er.inFront(t)) {
       // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
-      if ((t < tEnd && !visitInterval(ray, t, tEnd, setup_.rearObjects, hit, attenuation)) || lastPart(tEnd))
-        return finishRay(ray, hit, attenuation);
+      if ((t < tEnd && !visitInterval(ray, t, tEnd, setup_.rearObjects, hit, transmission)) || lastPart(tEnd))
+        return finishRay(ray, hit, transmission);
       t = tEnd;
       if (const int owner = context_.regions.ownerAt(er, t); owner != setup_.id) return leaveFor(owner, t);
       continue;
@@ -223,10 +223,10 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
       cells_.locate(er, t, column, row);
     }
     RegionExit exit;
-    const WalkResult result = cells_.walk(er, t, tEnd, column, row, visit, exit, stats_.processed.boxTests);
+    const WalkResult result = cells_.walk(er, t, tEnd, column, row, visit, exit, stats_.processed.cellSteps);
     if (result == WalkResult::Exited)
       return leaveFor(context_.regions.ownerBeyond(setup_.id, er, exit.t, exit.sStep, exit.qStep), exit.t);
-    if (result == WalkResult::Stopped || lastPart(tEnd)) return finishRay(ray, hit, attenuation);
+    if (result == WalkResult::Stopped || lastPart(tEnd)) return finishRay(ray, hit, transmission);
     t = tEnd;  // on to the rear part
   }
 }
@@ -235,7 +235,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
 // its light's volume, all held here: traced in one piece, exactly as the reference traces it; no message.
 template <class Real>
 bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& transmission) {
-  if (setup_.lightRays == LightRayMode::Messages || m.tEnter != m.ray.ray.tMin || m.attenuation != 1)
+  if (setup_.lightRays == LightRayMode::Messages || m.tEnter != m.ray.ray.tMin || m.transmission != 1)
     return false;
   const core::Vec3 origin = eyeFramePoint(context_.view, m.ray.ray.origin);
   auto inside = [&](const core::Box& box) {
@@ -245,16 +245,16 @@ bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& trans
   };
   if (!inside(setup_.lightSources.eyeBox) && !inside(setup_.rearLightSources.eyeBox)) return false;
   ++stats_.lightRaysTracedLocally;
-  transmission = core::shadowTransmission(shading_, *databaseBvh_, m.ray, stats_.processed, shadowScratch_);
+  transmission = core::lightRayTransmission(shading_, *databaseBvh_, m.ray, stats_.processed, lightRayScratch_);
   return true;
 }
 
 template <class Real>
-void LogicalProcessor<Real>::finishRay(const TracedRay& ray, const core::Hit& hit, double attenuation) {
+void LogicalProcessor<Real>::finishRay(const TracedRay& ray, const core::Hit& hit, double transmission) {
   ++stats_.finished[std::size_t(ray.kind)];
   outcome_.clear();
-  if (ray.kind == core::RayKind::Shadow)
-    shading_.finishShadow(ray, attenuation, outcome_);
+  if (ray.kind == core::RayKind::Light)
+    shading_.finishLightRay(ray, transmission, outcome_);
   else if (hit.found())
     shading_.shadeHit(ray, hit, outcome_);
   else

@@ -98,11 +98,11 @@ class LogicalProcessor {
   bool shootNextPrimary();
   void evaluate(Message message, bool primary);
   void evaluateLocalRays();
-  void finishRay(const TracedRay& ray, const core::Hit& hit, double attenuation);
+  void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
   bool tracedWhereItStarts(const Message& message, double& transmission);
   template <class Objects>
   bool visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects, core::Hit& hit,
-                     double& attenuation);
+                     double& transmission);
   void deliver(const core::BasicRayOutcome<Real>& outcome);
   // Communication task
   void send(Message message);
@@ -141,7 +141,7 @@ class LogicalProcessor {
   std::vector<double> mailboxT_;
   std::uint32_t rayStamp_ = 0;
   std::vector<core::Hit> crossed_;
-  core::BasicRayTreeScratch<Real> shadowScratch_;  // the shadow cache of light rays traced where they start
+  core::BasicRayTreeScratch<Real> lightRayScratch_;  // the shadow cache of light rays traced where they start
   SafraTermination termination_;
   NodeStats stats_;
 };

@@ -2,7 +2,7 @@
 // The paper's `rayon` message (Priol & Bouatouch 3.5.2): the ray with its original origin and direction,
 // where it enters the receiving region (t_enter, the paper's "end" point, and the face), its place in the
 // tree (depth, sample, coeff) and, for a light ray, the distance to the light (maxlum = ray.tMax), the light
-// term it carries (weight) and the attenuation found so far (att).
+// term it carries (weight) and the transmission found so far (att).
 #include <cstdint>
 
 #include "core/ray.h"
@@ -28,13 +28,13 @@ inline Face opposite(Face face) {
 }
 
 // Ray state is in the precision Real of the render (--precision): 80 bytes in float, 128 in double. tEnter
-// and attenuation stay double: tEnter is where the sender's walk (in double) ended, and the reference
-// multiplies transmittances in double, so every chain of processors must too.
+// and transmission stay double: tEnter is where the sender's walk (in double) ended, and the reference
+// multiplies transmissions in double, so every chain of processors must too.
 template <class Real>
 struct BasicRayMessage {
   core::BasicTracedRay<Real> ray;
   double tEnter = 0;              // the ray's interval continues from here in the receiving region
-  double attenuation = 1;         // shadow rays: product of T over objects crossed so far, in t order
+  double transmission = 1;         // light rays: product of T over objects crossed so far, in t order
   std::uint16_t destination = 0;  // processor that owns the region the ray enters
   std::uint8_t face = 0;          // face of the receiver it arrives through (statistics)
 

@@ -54,7 +54,7 @@ TEST_P(BallsMatchesSpd, ElementByElement) {
     EXPECT_EQ(g.kd, f.kd);
     EXPECT_EQ(g.ks, f.ks);
     EXPECT_EQ(g.shine, f.shine);
-    EXPECT_EQ(g.transmittance, f.transmittance);
+    EXPECT_EQ(g.transmission, f.transmission);
     EXPECT_EQ(g.ior, f.ior);
   }
 

@@ -170,7 +170,7 @@ TEST_F(Cli, StatsAreParseableJsonWithRayCounts) {
   EXPECT_EQ(stats.at("rays").at("eye").get<int>(), 256);
   EXPECT_EQ(stats.at("image").at("width").get<int>(), 16);
   EXPECT_EQ(stats.at("nonFiniteContributions").get<int>(), 0);
-  EXPECT_GT(stats.at("rays").at("shadow").get<int>(), 0);
+  EXPECT_GT(stats.at("rays").at("light").get<int>(), 0);
 }
 
 // --cells picks how regions hold their objects; the image does not depend on it, the stats say which.

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "core/balls.h"
-#include "core/framebuffer.h"
+#include "host/framebuffer.h"
 #include "host/sequential_renderers.h"
 
 namespace raycube::node {
@@ -127,7 +127,7 @@ class LogicalProcessorTest : public ::testing::Test {
   }
 
   static core::Image imageOf(const MachineContext& context, const std::vector<core::Contribution>& cs) {
-    core::Framebuffer frame(context.view.samplesX(), context.view.samplesY());
+    host::Framebuffer frame(context.view.samplesX(), context.view.samplesY());
     for (const core::Contribution& c : cs) frame.add(c);
     return frame.resolve(context.view);
   }

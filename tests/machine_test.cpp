@@ -56,7 +56,7 @@ TEST(MachineTest, Balls2MatchesReferenceOnEveryGridAndCapacity) {
   const RenderSettings settings = settingsFor(side);
   const RenderResult reference = renderReference(scene, settings);
   ASSERT_GT(reference.counters.of(core::RayKind::Reflected), 0u);
-  ASSERT_GT(reference.counters.of(core::RayKind::Shadow), 0u);
+  ASSERT_GT(reference.counters.of(core::RayKind::Light), 0u);
   std::vector<Grid> grids = allGrids();
   std::vector<std::size_t> capacities{1, 8, 128};
   if (sanitized()) {
@@ -91,11 +91,11 @@ TEST(MachineTest, LightConesAndPyramidsDeleteLightRayMessagesAndKeepTheImage) {
           expectMachineMatchesReference(reference, result, report, label);
           std::uint64_t lightMessages = 0, tracedHere = 0;
           for (const ProcessorReport& p : report.processors) {
-            lightMessages += p.node.messagesByKind[std::size_t(core::RayKind::Shadow)];
+            lightMessages += p.node.messagesByKind[std::size_t(core::RayKind::Light)];
             tracedHere += p.node.lightRaysTracedLocally;
           }
           EXPECT_EQ(lightMessages, 0u) << label;
-          EXPECT_EQ(tracedHere, reference.counters.of(core::RayKind::Shadow)) << label;
+          EXPECT_EQ(tracedHere, reference.counters.of(core::RayKind::Light)) << label;
         }
       }
     }
@@ -119,7 +119,7 @@ TEST(MachineTest, LightAmongTheObjectsSendsLightRaysOnlyAsMessages) {
         renderMachineWatched(scene, settings, machineFor({4, 4}, 8, mode), report, label);
     expectMachineMatchesReference(reference, result, report, label);
     for (const ProcessorReport& p : report.processors)
-      lightMessages[k] += p.node.messagesByKind[std::size_t(core::RayKind::Shadow)];
+      lightMessages[k] += p.node.messagesByKind[std::size_t(core::RayKind::Light)];
     ++k;
   }
   EXPECT_GT(lightMessages[0], 100u);
@@ -373,7 +373,7 @@ TEST(MachineTest, EyeInsideTransparentSphereMatchesReference) {
 }
 
 // The smallest form of the scene above that the machine got wrong (found by this suite): purely diffuse
-// materials, so the only secondary rays are the clear sphere's refracted rays (and shadow rays). Pixels
+// materials, so the only secondary rays are the clear sphere's refracted rays (and light rays). Pixels
 // (13, 26) and (18, 26) of a 32 x 32 image: the refracted ray passes near the diffuse sphere and should hit
 // the floor; one processor is enough, so it is the region's cell walk, not the messages.
 TEST(MachineTest, EyeInsideRefractingSphereOneProcessorMatchesReference) {

@@ -1,5 +1,5 @@
 // The two yardsticks (host/sequential_renderers.h) agree bit for bit, on every shipped scene, whatever the
-// thread count and run after run: the promise the fixed-point frame buffer makes (core/framebuffer.h).
+// thread count and run after run: the promise the fixed-point frame buffer makes (host/framebuffer.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -85,7 +85,7 @@ TEST_P(RenderersAgree, BitIdenticalAcrossRenderersThreadsAndRuns) {
       sampling == core::Sampling::Corners ? std::uint64_t(side + 1) * (side + 1) : std::uint64_t(side) * side;
   EXPECT_EQ(reference.counters.of(core::RayKind::Eye), eyeRays);
   // A scene that is not empty must produce more than eye rays, or the comparison below proves little.
-  EXPECT_GT(reference.counters.of(core::RayKind::Shadow), 0u);
+  EXPECT_GT(reference.counters.of(core::RayKind::Light), 0u);
 
   for (int run = 0; run < 2; ++run) {
     for (int threads : {1, 2, 5}) {
@@ -114,7 +114,7 @@ TEST(RendererCounters, DepthOneSpawnsNoSecondaryRays) {
   for (const RenderResult& r : {renderReference(scene, settings), renderImageParallel(scene, settings)}) {
     EXPECT_EQ(r.counters.of(core::RayKind::Reflected), 0u) << r.mode;
     EXPECT_EQ(r.counters.of(core::RayKind::Refracted), 0u) << r.mode;
-    EXPECT_GT(r.counters.of(core::RayKind::Shadow), 0u) << r.mode;  // depth limits the tree, not the lights
+    EXPECT_GT(r.counters.of(core::RayKind::Light), 0u) << r.mode;  // depth limits the tree, not the lights
   }
   // And the limit matters: the mirrored balls look different with their reflections.
   settings.shading.maxDepth = 5;
@@ -147,7 +147,7 @@ TEST(ContributionForm, NoLightAndBlackBackgroundGiveABlackImage) {
     const RenderSettings settings = settingsFor(16, sampling);
     for (const RenderResult& r : {renderReference(scene, settings), renderImageParallel(scene, settings)}) {
       for (const core::Color& p : r.image.pixels) ASSERT_EQ(p, core::Color(0)) << r.mode;
-      EXPECT_EQ(r.counters.of(core::RayKind::Shadow), 0u) << r.mode;
+      EXPECT_EQ(r.counters.of(core::RayKind::Light), 0u) << r.mode;
       EXPECT_GT(r.counters.of(core::RayKind::Reflected), 0u) << r.mode;  // the tree is still traced
     }
   }

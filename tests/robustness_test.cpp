@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/framebuffer.h"
+#include "host/framebuffer.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "core/precision.h"
@@ -60,7 +60,7 @@ TEST(Robustness, SaturatedContributionsNeverWrap) {
   const core::Scene scene = core::parseNff(
       std::string(kView) + "l 3 4 -5\nf 1e10 1e10 1e10 1e10 0 0 0 0\ns 0 0 0 3\n", "bright.nff");
   const core::Image image = renderReference(scene, tiny()).image;
-  EXPECT_GE(image.at(4, 4)[0], 2 * core::Framebuffer::kContributionLimit);
+  EXPECT_GE(image.at(4, 4)[0], 2 * host::Framebuffer::kContributionLimit);
   expectEveryModeMatchesReference(scene, tiny());
 }
 
@@ -72,12 +72,12 @@ TEST(Robustness, SaturatedSumsDoNotDependOnArrivalOrder) {
   const core::View view(camera, 1, 1, core::Sampling::Centers);
   std::vector<core::Image> images;
   for (const auto& values : order) {
-    core::Framebuffer frame(1, 1);
+    host::Framebuffer frame(1, 1);
     for (double v : values) frame.add(core::Contribution{0, core::Color(v, -v, 0)});
     images.push_back(frame.resolve(view));
   }
-  EXPECT_EQ(images[0].at(0, 0)[0], core::Framebuffer::kContributionLimit);
-  EXPECT_EQ(images[0].at(0, 0)[1], -core::Framebuffer::kContributionLimit);
+  EXPECT_EQ(images[0].at(0, 0)[0], host::Framebuffer::kContributionLimit);
+  EXPECT_EQ(images[0].at(0, 0)[1], -host::Framebuffer::kContributionLimit);
   for (const core::Image& image : images) EXPECT_TRUE(core::bitIdentical(image, images[0]));
 }
 

@@ -134,13 +134,13 @@ TEST(ScaleInvariance, ReferenceAndBvhAgreeAtLargeAndSmallScale) {
 }
 
 // ---- Acne at the contact point --------------------------------------------------------------------------
-// Self-intersection acne (a spawned ray meeting the surface it leaves) makes a shadow ray find its own
+// Self-intersection acne (a spawned ray meeting the surface it leaves) makes a light ray find its own
 // surface: the pixel loses that light's term and turns dark among lit neighbours; a reflected ray that
 // meets its own surface shades the inside of the ball. Either way it is high-frequency noise: single pixels
 // that disagree with a flat neighbourhood. True image features here (shadow boundaries, the silhouette of
 // the ball, the thin shadowed wedge) are edges and lines, where the neighbours themselves disagree.
 // So a pixel is a speckle when its luminance is more than kSpeckleContrast away from the median of its 8
-// neighbours while those neighbours span less than kSpeckleContrast. The light a shadow ray carries here is
+// neighbours while those neighbours span less than kSpeckleContrast. The light a light ray carries here is
 // ~0.08 (lit floor 0.27 vs 0.18 in shadow), well above the threshold; smooth shading varies by ~0.005 per
 // pixel, well below it. Dense acne (most pixels of a surface) is not isolated; the scale test above catches
 // it as a difference from the unit-scale image instead.

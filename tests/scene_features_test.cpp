@@ -1,5 +1,5 @@
 // A scene knows what it uses, so a renderer never pays for a feature it does not need (no refraction or
-// transmittance products without T > 0, no cone or patch code without cones or patches).
+// transmission products without T > 0, no cone or patch code without cones or patches).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -38,8 +38,8 @@ TEST(SceneFeatures, EachShippedSceneReportsWhatItUses) {
   EXPECT_EQ(shipped("tree1.nff").features().lightCount, 7u);
 }
 
-// Shadow rays multiply transmittances only in scenes that have some; elsewhere any blocker answers.
-TEST(SceneFeatures, ShadingKnowsWhetherLightRaysMustMultiplyTransmittances) {
+// Light rays multiply transmissions only in scenes that have some; elsewhere any blocker answers.
+TEST(SceneFeatures, ShadingKnowsWhetherLightRaysMustMultiplyTransmissions) {
   const Scene balls = makeBalls(1), gears = shipped("gears1.nff");
   EXPECT_FALSE(Whitted(balls, {}).sceneTransmits());
   EXPECT_TRUE(Whitted(gears, {}).sceneTransmits());

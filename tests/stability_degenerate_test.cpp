@@ -23,13 +23,13 @@ using core::Vec3;
 
 class StabilityDegenerate : public PrecisionStability {};
 
-TEST_P(StabilityDegenerate, DepthOneShootsOnlyEyeAndShadowRays) {
+TEST_P(StabilityDegenerate, DepthOneShootsOnlyEyeAndLightRays) {
   const int side = sanitized() ? 16 : 24;
   const RenderSettings settings = settingsOf(side, side, 1);
   const core::Scene scene = core::makeBalls(2);
   const RenderResult ref = reference(scene, settings, "balls2 depth 1");
   EXPECT_EQ(ref.counters.of(core::RayKind::Reflected), 0u);
-  EXPECT_GT(ref.counters.of(core::RayKind::Shadow), 0u);
+  EXPECT_GT(ref.counters.of(core::RayKind::Light), 0u);
   expectMachineMatches(scene, settings, machineFor(2, 2), ref, "balls2 depth 1 2x2");
 }
 

@@ -78,7 +78,7 @@ core::Scene tangentSphere(int side, bool transparent, int radiusUlps) {
       .polygon({Vec3(-50, -50, -2 * radius), Vec3(50, -50, -2 * radius), Vec3(50, 50, -2 * radius),
                 Vec3(-50, 50, -2 * radius)})
       .light(Vec3(4, -6, 5))
-      .light(Vec3(0, -10, 0));  // at the eye: shadow rays graze the silhouette too
+      .light(Vec3(0, -10, 0));  // at the eye: light rays graze the silhouette too
   return b.scene();
 }
 

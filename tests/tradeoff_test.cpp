@@ -96,7 +96,7 @@ TEST(Tradeoff, MalformedCsvNamesItsLine) {
   const std::filesystem::path csv = std::filesystem::temp_directory_path() / "raycube_tradeoff_bad.csv";
   {
     std::ofstream out(csv);
-    out << "knob,setting,seconds,eye_rays,reflected_rays,refracted_rays,shadow_rays,rmse,psnr_db,max_error\n";
+    out << "knob,setting,seconds,eye_rays,reflected_rays,refracted_rays,light_rays,rmse,psnr_db,max_error\n";
     out << "depth,1,0.02,65536,0,0,180220,0.12,18.38,0.482\n";
     out << "depth,2,fast,65536,0,0,180220,0.12,18.38,0.482\n";
   }

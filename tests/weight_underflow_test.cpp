@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/facing_mirrors.h"
-#include "core/framebuffer.h"
+#include "host/framebuffer.h"
 #include "host/machine.h"
 #include "host/sequential_renderers.h"
 
@@ -58,9 +58,9 @@ TEST(FacingMirrors, RejectsReflectanceOutsideZeroToOne) {
 struct UnderflowCase {
   const char* name;
   double ks;
-  // Shadow rays per eye ray: one per hit (the light is in front of every hit) while coeff * I * bracket is
+  // Light rays per eye ray: one per hit (the light is in front of every hit) while coeff * I * bracket is
   // not 0. With ks = 1e-160 level 3 carries 1e-320 (denormal), level 4 carries 0: three.
-  std::uint64_t shadowRaysPerEyeRay;
+  std::uint64_t lightRaysPerEyeRay;
 };
 
 void PrintTo(const UnderflowCase& c, std::ostream* os) {
@@ -82,7 +82,7 @@ TEST_P(WeightUnderflow, DepthSixtyFourTreeIsCompleteFiniteAndIdenticalInBothRend
     // Levels 2..64 of every tree: each of the 63 rays before them hit a mirror, whatever its coeff.
     EXPECT_EQ(c.of(core::RayKind::Reflected), kEyeRays * (kDepth - 1));
     EXPECT_EQ(c.of(core::RayKind::Refracted), 0u);
-    EXPECT_EQ(c.of(core::RayKind::Shadow), kEyeRays * GetParam().shadowRaysPerEyeRay);
+    EXPECT_EQ(c.of(core::RayKind::Light), kEyeRays * GetParam().lightRaysPerEyeRay);
   }
   EXPECT_TRUE(core::bitIdentical(reference.image, parallel.image));
 }
@@ -151,7 +151,7 @@ TEST(UnderflowedWeights, BrighterMirrorsNeverDarkenAPixel) {
 // With ks = 1 no energy leaves the tree: each of the 64 levels adds at least its ambient term
 // coeff * A * Kd = 1 * 1/2 * 0.1 (A = sqrt(L) / 2L for one light), rounded once to the frame buffer step.
 TEST(UnderflowedWeights, LosslessMirrorsAddTheAmbientTermOfEveryLevel) {
-  const double ambientPerLevel = 0.5 * 0.1 - 0.5 / core::Framebuffer::kFixedScale;
+  const double ambientPerLevel = 0.5 * 0.1 - 0.5 / host::Framebuffer::kFixedScale;
   const core::Image image = referenceImage(1, kDepth);
   for (const core::Color& c : image.pixels)
     for (int ch = 0; ch < 3; ++ch) ASSERT_GE(c[ch], kDepth * ambientPerLevel);

@@ -1,10 +1,16 @@
-#include "core/framebuffer.h"
+#include "host/framebuffer.h"
 
 #include <cmath>
 
 #include "core/image.h"
 
-namespace raycube::core {
+namespace raycube::host {
+
+using core::Contribution;
+using core::Image;
+using core::View;
+using core::Color;
+using core::Sampling;
 namespace {
 
 // Each contribution is rounded on its own; out-of-range values saturate instead of overflowing.
@@ -58,4 +64,4 @@ Image Framebuffer::resolve(const View& view) const {
   return image;
 }
 
-}  // namespace raycube::core
+}  // namespace raycube::host

@@ -10,10 +10,12 @@
 #include "core/view.h"
 
 namespace raycube::core {
-
 struct Image;
+}
 
-class Framebuffer final : public ContributionSink {
+namespace raycube::host {
+
+class Framebuffer final : public core::ContributionSink {
  public:
   // 2^-40 resolution (~1e-12); one contribution saturates at 2^22 (kContributionLimit). Sums are kept in
   // 128 bits: 2^65 saturated contributions fit in a slot, so no sum ever wraps and, integer addition being
@@ -26,11 +28,11 @@ class Framebuffer final : public ContributionSink {
 
   // Not synchronised: one writer per sample at a time (the host thread, or the task owning the sample).
   // A NaN or infinite channel is dropped (tracing counts such contributions as nonFinite).
-  void add(const Contribution& c) override;
+  void add(const core::Contribution& c) override;
   void add(const Framebuffer& other);  // sum of two partial buffers of the same size
 
   // Pixel colours: the sample itself (centres) or the mean of a pixel's four corner samples (SPD rule 6).
-  Image resolve(const View& view) const;
+  core::Image resolve(const core::View& view) const;
 
   int samplesX() const { return samplesX_; }
   int samplesY() const { return samplesY_; }
@@ -42,4 +44,4 @@ class Framebuffer final : public ContributionSink {
   std::vector<Fixed> fixed_;  // 3 channels per sample
 };
 
-}  // namespace raycube::core
+}  // namespace raycube::host
