@@ -221,63 +221,91 @@ void reportRun(MachineRun run, const std::vector<double>& estimatedLoad, const L
   }
 }
 
+// Phases 2 and 3 (3.2 steps 1-2, 3.7.1): sub-sample the image and project its rays (a BSP balances them,
+// the uniform grid is only measured), partition the screen, prune the database per region and light volume.
+struct HostPreparation {
+  LoadSample load;
+  node::MachineContext context;
+  std::vector<node::NodeSetup> setups;
+};
+
+HostPreparation prepare(const core::Scene& scene, const core::View& view, const RenderSettings& settings,
+                        const MachineSettings& machine, Progress& progress) {
+  const core::Whitted shading(scene, settings.shading);
+  LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
+                                  machine.lightRays != node::LightRayMode::Messages);
+  std::vector<node::EyeBox> boxes;
+  const double sceneExtent = 2 * scene.largestCoordinate();
+  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
+  node::MachineContext context{view, settings.shading, partition(view, load, machine)};
+  progress.phase("pruning");
+  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(), boxes,
+                                                      machine);
+  return {std::move(load), std::move(context), std::move(setups)};
+}
+
+std::vector<node::SampleRect> areasOf(const node::RegionMap& regions) {
+  std::vector<node::SampleRect> areas;
+  for (int p = 0; p < regions.processors(); ++p) areas.push_back(regions.areaOf(p));
+  return areas;
+}
+
+// When the synthesis phase started (preprocessing ends there: each node subdivides its region first).
+struct SynthesisClock {
+  Clock::time_point start;
+  Clock::time_point synthesis;
+};
+
+// Phases 4 and 5: the engine runs the processors while the host accumulates every contribution, and the
+// progress line follows each processor's segments against 3.7.1's sub-sampled estimate of its work.
+template <class Real>
+MachineRun launch(HostPreparation& host, const MachineSettings& machine,
+                  const std::vector<std::uint32_t>& cubeNode, Accumulator& accumulator, Progress& progress,
+                  SynthesisClock& clock) {
+  progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
+  const MachineProgress work(expectedWork(areasOf(host.context.regions), host.load));
+  EngineHooks hooks;
+  hooks.host = &accumulator;
+  hooks.synthesisStarts = [&] {
+    clock.synthesis = Clock::now();
+    progress.phase("tracing", work.workOf({}).expected);
+  };
+  hooks.progress = [&](const std::vector<std::uint64_t>& evaluated) {
+    const MachineProgress::Work w = work.workOf(evaluated);
+    progress.setWork(std::uint64_t(w.done), w.expected);
+  };
+  MachineRun run = makeEngine<Real>(machine, cubeNode)->run(host.context, std::move(host.setups), hooks);
+  progress.complete();
+  return run;
+}
+
 template <class Real>
 RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& settings,
                              const MachineSettings& machine, MachineReport* report) {
-  const auto start = Clock::now();
+  SynthesisClock clock{Clock::now(), Clock::now()};
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
   requireMachineFits(machine, view);  // phase 1
   Progress progress("partitioning", 0, settings.progress);
-  const core::Whitted shading(scene, settings.shading);
-  // 3.7.1: sub-sample the image and project its rays; a BSP balances them, the uniform grid is only measured.
-  const LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
-                                        machine.lightRays != node::LightRayMode::Messages);
-  std::vector<node::EyeBox> boxes;
-  const double sceneExtent = 2 * scene.largestCoordinate();
-  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
-  const node::MachineContext context{view, settings.shading, partition(view, load, machine)};
-  progress.phase("pruning");
-  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(), boxes,
-                                                      machine);
-  RenderResult result;
-  result.mode = "machine";
-  result.precision = core::kPrecisionOf<Real>;
-  result.workers = context.regions.processors();
+  HostPreparation host = prepare(scene, view, settings, machine, progress);
 
   MachineReport local;
   MachineReport& out = report ? *report : local;
   out.settings = machine;
-  mapOntoHypercube(context.regions, machine, out);
-  Accumulator host(view);
-  std::vector<node::SampleRect> areas;
-  for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
-  MachineRun run;
-  auto traceStart = Clock::now();
-  {
-    progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
-    // Each processor's segments evaluated, against 3.7.1's sub-sampled estimate of its segments and work.
-    const MachineProgress work(expectedWork(areas, load));
-    EngineHooks hooks;
-    hooks.host = &host;
-    hooks.synthesisStarts = [&] {
-      result.preprocessSeconds = secondsSince(start);
-      traceStart = Clock::now();
-      progress.phase("tracing", work.workOf({}).expected);
-    };
-    hooks.progress = [&](const std::vector<std::uint64_t>& evaluated) {
-      const MachineProgress::Work w = work.workOf(evaluated);
-      progress.setWork(std::uint64_t(w.done), w.expected);
-    };
-    run = makeEngine<Real>(machine, out.hypercubeNode)->run(context, std::move(setups), hooks);
-    progress.complete();
-  }
-  result.image = host.frame().resolve(view);
-  result.traceSeconds = secondsSince(traceStart);
+  mapOntoHypercube(host.context.regions, machine, out);
+  Accumulator accumulator(view);
+  MachineRun run = launch<Real>(host, machine, out.hypercubeNode, accumulator, progress, clock);
 
-  out.contributionsAccumulated = host.count();
-  reportRun(std::move(run), estimateLoads(areas, load, machine.loadMetric), load,
-            sizeof(node::BasicRayMessage<Real>), result, out);
+  RenderResult result;
+  result.mode = "machine";
+  result.precision = core::kPrecisionOf<Real>;
+  result.workers = host.context.regions.processors();
+  result.image = accumulator.frame().resolve(view);
+  result.preprocessSeconds = std::chrono::duration<double>(clock.synthesis - clock.start).count();
+  result.traceSeconds = secondsSince(clock.synthesis);
+  out.contributionsAccumulated = accumulator.count();
+  reportRun(std::move(run), estimateLoads(areasOf(host.context.regions), host.load, machine.loadMetric),
+            host.load, sizeof(node::BasicRayMessage<Real>), result, out);
   return result;
 }
 
