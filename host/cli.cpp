@@ -28,6 +28,7 @@
 #include "host/machine.h"
 #include "host/machine_checks.h"
 #include "host/machine_report.h"
+#include "host/mpi_session.h"
 #include "host/progress.h"
 #include "host/run_report.h"
 #include "host/sequential_renderers.h"
@@ -88,6 +89,7 @@ struct RenderCommand {
   std::string costsPath;
   std::string tracePath;
   std::string timelinePath;
+  std::string transport = "threads";
   MachineSettings machine;
 };
 
@@ -184,6 +186,7 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
                                                               settings.sampling, settings.shading.raysPerSample))
                             : parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
       machine.emulate = emulatedPlatform(cmd);
+      machine.mpi = cmd.transport == "mpi";
       report.emplace();
       return renderMachine(scene, settings, machine, &*report);
     }
@@ -323,6 +326,12 @@ int runRender(const RenderCommand& cmd) {
   if (!machineMode && !cmd.loadChartPath.empty())
     throw std::invalid_argument("--load-chart needs --mode machine");
   if (!cmd.procs.empty()) parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
+  if (cmd.transport == "mpi") {
+    if (!machineMode) throw std::invalid_argument("--transport mpi needs --mode machine");
+    if (!cmd.emulate.empty() || !cmd.platformPath.empty())
+      throw std::invalid_argument("--transport mpi runs on real ranks: it excludes --emulate and --platform");
+    if (hostMpiLink() == nullptr) throw std::invalid_argument("--transport mpi needs mpirun -np N (N >= 2)");
+  }
   requireWritable(cmd.output, "--output", {".exr", ".png"});
   requireWritable(cmd.statsPath, "--stats", {});
   requireWritable(cmd.overlayPath, "--overlay", {".png", ".svg"});
@@ -409,6 +418,14 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
       ->add_option("--emulate", cmd.emulate,
                    "Run the machine on SimGrid in simulated time: ipsc1 (the paper's iPSC/1) | cluster")
       ->check(CLI::IsMember({"ipsc1", "cluster"}));
+  render
+      ->add_option("--transport", cmd.transport,
+                   "threads (shared-memory FIFOs) | mpi (under mpirun -np N: rank 0 the host, ranks 1..N-1 "
+                   "the processors; README, The machine over MPI)")
+      ->check(CLI::IsMember({"threads", "mpi"}));
+  render
+      ->add_option("--ray-batch", cmd.machine.rayBatch, "MPI: rays per message to one rank, at most")
+      ->check(CLI::Range(std::size_t(1), std::size_t(4096)));
   render->add_option("--platform", cmd.platformPath,
                      "A SimGrid platform XML to emulate (hosts node-0 ... and manager; see README)");
   render->add_option("--costs", cmd.costsPath, "Cost table: 'name value' lines (README, Emulated machine time)");
