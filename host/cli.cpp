@@ -29,6 +29,7 @@
 #include "host/machine_checks.h"
 #include "host/machine_report.h"
 #include "host/mpi_session.h"
+#include "host/distributed_report.h"
 #include "host/progress.h"
 #include "host/run_report.h"
 #include "host/sequential_renderers.h"
@@ -256,7 +257,8 @@ RunReport renderRunReport(const RenderCommand& cmd, const core::Scene& scene, co
   run.title = fmt::format("raycube render: {}", scene.name);
   run.settings = settingsOf(cmd, scene, result);
   run.summary = summaryText(scene, result) + (report ? machineTable(*report) : "") +
-                (report && report->simulated ? simulatedTable(*report) : "");
+                (report && report->simulated ? simulatedTable(*report) : "") +
+                (report && report->distributed ? distributedTable(*report) : "");
   run.imagePng = pngBytes(result.image);
   if (!report) return run;
   addChartSection(run, loadOverlay(result.image, *report, caption));
@@ -310,6 +312,7 @@ std::vector<std::string> writeExtras(const RenderCommand& cmd, const core::Scene
   nlohmann::json json = statsJson(scene, result);
   if (report) json["machine"] = machineJson(*report);
   if (report && report->simulated) json["simulated"] = simulatedJson(*report);
+  if (report && report->distributed) json["mpi"] = distributedJson(*report);
   if (!cmd.statsPath.empty()) writeJson(json, cmd.statsPath);
   if (!cmd.reportPath.empty()) {
     writeReport(renderRunReport(cmd, scene, result, report ? &*report : nullptr, json, caption),
@@ -360,6 +363,7 @@ int runRender(const RenderCommand& cmd) {
   std::cout << summaryText(*scene, *result);
   if (report) std::cout << machineTable(*report);
   if (report && report->simulated) std::cout << simulatedTable(*report);
+  if (report && report->distributed) std::cout << distributedTable(*report);
   return result->counters.nonFinite > 0 ? 3 : 0;
 }
 

@@ -31,7 +31,7 @@ int serveAsHost(queues::MpiLink& link, const std::function<int()>& hostMain) {
   try {
     status = hostMain();
   } catch (const std::exception& e) {
-    std::cerr << "raycube: rank 0 (host): " << e.what() << "\n";
+    std::cerr << "raycube: rank 0 (host): " + std::string(e.what()) + "\n";
   }
   gHostLink = nullptr;
   for (int r = 1; r < link.size(); ++r) link.postValue(r, queues::Packet::Quit, status);
@@ -43,8 +43,8 @@ int serveAsNodes(queues::MpiLink& link) {
   try {
     const int status = serveMachineJobs(link);
     if (status != 0)
-      std::cerr << "raycube: rank " << link.rank() << ": stopping: the host (rank 0) failed with exit status "
-                << status << "\n";
+      std::cerr << "raycube: rank " + std::to_string(link.rank()) +
+                       ": stopping: the host (rank 0) failed with exit status " + std::to_string(status) + "\n";
     return status;
   } catch (const std::exception& e) {
     link.abort(e.what());

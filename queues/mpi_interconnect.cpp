@@ -365,13 +365,10 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
     worked |= returnCredits(false);
     worked |= forwardToken();
     worked |= forwardContributions(false);
-    if (announced_.exchange(false)) {
-      for (int r = 1; r < link_.size(); ++r)
-        if (r != link_.rank()) link_.post(r, Packet::Terminate, {});
-      worked = true;
-    }
+    worked |= announceTermination();
     link_.progressSends();
     if (hooks.check) hooks.check();
+    // Processor 0 may announce between the line above and this one: the announcement still leaves below.
     if (terminated() && hooks.stopped()) break;
     if (Clock::now() >= nextProgress) {
       nextProgress = Clock::now() + kProgressPeriod;
@@ -391,7 +388,17 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
           kLongestNap, std::chrono::microseconds(10 << std::min(idlePasses - 16, 6))));
     }
   }
+  announceTermination();
   forwardContributions(true);
+}
+
+// Processor 0 proved termination here: every other rank of processors learns it.
+template <class Real>
+bool MpiInterconnect<Real>::announceTermination() {
+  if (!announced_.exchange(false)) return false;
+  for (int r = 1; r < link_.size(); ++r)
+    if (r != link_.rank()) link_.post(r, Packet::Terminate, {});
+  return true;
 }
 
 template class MpiInterconnect<float>;

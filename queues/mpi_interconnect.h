@@ -100,6 +100,7 @@ class MpiInterconnect {
   bool returnCredits(bool flushAll);
   bool forwardToken();
   bool forwardContributions(bool flush);
+  bool announceTermination();
 
   const node::RegionMap& regions_;
   MpiWiring wiring_;
