@@ -10,11 +10,6 @@ namespace raycube::core {
 
 namespace {
 constexpr std::uint32_t kLeafSize = 1;
-// A traversal holds at most one pending sibling per level plus the node it visits, so bounding the depth
-// bounds its stack: degenerate scenes (each split peeling off one object) end in one larger leaf instead of
-// overflowing it.
-constexpr int kMaxDepth = 60;
-constexpr int kStackSize = kMaxDepth + 2;
 }
 
 namespace {
@@ -118,53 +113,12 @@ std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin
   return index;
 }
 
-// Front-to-back traversal; a node is skipped only when it starts strictly beyond tLimit, so objects tied
-// with the current best t are still visited and the tie rule can pick the smaller index.
-template <class Real>
-template <class Visit>
-void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, const Real& tLimit, TraceCounters& counters,
-                              Visit&& visit) const {
-  if (nodes_.empty()) return;
-  const InverseDirection<Real> inv(ray.direction);
-  struct Entry {
-    std::uint32_t node;
-    Real tEnter;
-  };
-  Entry stack[kStackSize];
-  int top = 0;
-  Real tEnter;
-  ++counters.boxTests;
-  if (!slabsHit(nodes_[0].box, ray.origin, inv, ray.tMin, tLimit, tEnter)) return;
-  stack[top++] = Entry{0, tEnter};
-  while (top > 0) {
-    const Entry entry = stack[--top];
-    if (entry.tEnter > tLimit) continue;
-    const Node& node = nodes_[entry.node];
-    if (node.count > 0) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-        if (!visit(order_[i])) return;
-      continue;
-    }
-    const std::uint32_t children[2] = {entry.node + 1, node.first};
-    Real tChild[2];
-    bool hit[2];
-    for (int c = 0; c < 2; ++c) {
-      ++counters.boxTests;
-      hit[c] = slabsHit(nodes_[children[c]].box, ray.origin, inv, ray.tMin, tLimit, tChild[c]);
-    }
-    // Push the farther child first so the nearer one is visited next.
-    const int nearFirst = (hit[0] && hit[1] && tChild[1] < tChild[0]) ? 1 : 0;
-    for (int k : {1 - nearFirst, nearFirst})
-      if (hit[k]) stack[top++] = Entry{children[k], tChild[k]};
-  }
-}
-
 // The best t so far, in Real, limits the traversal; a float t converts to the Hit's double exactly.
 template <class Real>
 Hit BasicBvh<Real>::closestHit(const BasicRay<Real>& ray, TraceCounters& counters) const {
   Hit best;
   Real bestT = std::numeric_limits<Real>::infinity();
-  traverse(ray, bestT, counters, [&](std::uint32_t object) {
+  traverse(ray, ray.tMin, bestT, counters, [&](std::uint32_t object) {
     countTest(counters, scene_.objects[object]);
     const Hit h{nearestHit(scene_.objects[object], ray, std::numeric_limits<Real>::infinity()), object};
     if (h.t < kInfinity && h.closerThan(best)) {
@@ -181,7 +135,7 @@ double BasicBvh<Real>::transmission(const BasicRay<Real>& ray, TraceCounters& co
                                     std::vector<Hit>& crossed) const {
   crossed.clear();
   bool blocked = false;
-  traverse(ray, ray.tMax, counters, [&](std::uint32_t object) {
+  traverse(ray, ray.tMin, ray.tMax, counters, [&](std::uint32_t object) {
     countTest(counters, scene_.objects[object]);
     const double t = nearestHit(scene_.objects[object], ray, ray.tMax);
     if (t == kInfinity) return true;

@@ -22,6 +22,13 @@ class BasicBvh {
   Hit closestHit(const BasicRay<Real>& ray, TraceCounters& counters) const;
   double transmission(const BasicRay<Real>& ray, TraceCounters& counters, std::vector<Hit>& crossed) const;
   std::size_t nodeCount() const { return nodes_.size(); }
+  // Front-to-back traversal: visit(object) for each object whose box the ray meets within [tFrom, tLimit],
+  // until it returns false. tLimit is read again at every node, so visit may lower it (the best hit so far);
+  // a node is skipped only when it starts strictly beyond tLimit, so objects tied with the current best t
+  // are still visited and the tie rule can pick the smaller index.
+  template <class Visit>
+  void traverse(const BasicRay<Real>& ray, Real tFrom, const Real& tLimit, TraceCounters& counters,
+                Visit&& visit) const;
 
  private:
   struct Node {
@@ -30,9 +37,12 @@ class BasicBvh {
     std::uint32_t count = 0;  // leaf: number of objects; inner: 0 (left child follows the node)
     std::uint8_t axis = 0;
   };
+  // A traversal holds at most one pending sibling per level plus the node it visits, so bounding the depth
+  // bounds its stack: degenerate scenes (each split peeling off one object) end in one larger leaf instead
+  // of overflowing it.
+  static constexpr int kMaxDepth = 60;
+  static constexpr int kStackSize = kMaxDepth + 2;
   std::uint32_t build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end, int depth);
-  template <class Visit>
-  void traverse(const BasicRay<Real>& ray, const Real& tLimit, TraceCounters& counters, Visit&& visit) const;
 
   const Scene& scene_;
   const Whitted& shading_;
@@ -40,5 +50,44 @@ class BasicBvh {
   std::vector<std::uint32_t> order_;  // object indices, leaves point into it
 };
 using Bvh = BasicBvh<double>;
+
+template <class Real>
+template <class Visit>
+void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real& tLimit, TraceCounters& counters,
+                              Visit&& visit) const {
+  if (nodes_.empty()) return;
+  const InverseDirection<Real> inv(ray.direction);
+  struct Entry {
+    std::uint32_t node;
+    Real tEnter;
+  };
+  Entry stack[kStackSize];
+  int top = 0;
+  Real tEnter;
+  ++counters.boxTests;
+  if (!slabsHit(nodes_[0].box, ray.origin, inv, tFrom, tLimit, tEnter)) return;
+  stack[top++] = Entry{0, tEnter};
+  while (top > 0) {
+    const Entry entry = stack[--top];
+    if (entry.tEnter > tLimit) continue;
+    const Node& node = nodes_[entry.node];
+    if (node.count > 0) {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+        if (!visit(order_[i])) return;
+      continue;
+    }
+    const std::uint32_t children[2] = {entry.node + 1, node.first};
+    Real tChild[2];
+    bool hit[2];
+    for (int c = 0; c < 2; ++c) {
+      ++counters.boxTests;
+      hit[c] = slabsHit(nodes_[children[c]].box, ray.origin, inv, tFrom, tLimit, tChild[c]);
+    }
+    // Push the farther child first so the nearer one is visited next.
+    const int nearFirst = (hit[0] && hit[1] && tChild[1] < tChild[0]) ? 1 : 0;
+    for (int k : {1 - nearFirst, nearFirst})
+      if (hit[k]) stack[top++] = Entry{children[k], tChild[k]};
+  }
+}
 
 }  // namespace raycube::core

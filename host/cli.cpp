@@ -50,6 +50,9 @@ const std::map<std::string, RenderMode> kModes{{"reference", RenderMode::Referen
 const std::map<std::string, node::LightRayMode> kLightRays{{"messages", node::LightRayMode::Messages},
                                                            {"cone", node::LightRayMode::Cone},
                                                            {"pyramid", node::LightRayMode::Pyramid}};
+const std::map<std::string, node::CellStructure> kCellStructures{{"auto", node::CellStructure::Auto},
+                                                                  {"paper", node::CellStructure::Paper},
+                                                                  {"bvh", node::CellStructure::Bvh}};
 const std::map<std::string, Balance> kBalances{{"uniform", Balance::Uniform}, {"bsp", Balance::Bsp}};
 const std::map<std::string, LoadMetric> kLoadMetrics{{"rays", LoadMetric::Rays}, {"cost", LoadMetric::Cost}};
 const std::map<std::string, core::Precision> kPrecisions{{"float", core::Precision::Float},
@@ -83,6 +86,7 @@ struct RenderCommand {
   std::string loadChartPath;
   std::string reportPath;
   std::string lightRays = "pyramid";
+  std::string cells = "auto";
   std::string balance = "bsp";
   std::string loadMetric = "cost";
   std::string emulate;
@@ -104,6 +108,18 @@ std::optional<EmulatedPlatform> emulatedPlatform(const RenderCommand& cmd) {
   EmulatedPlatform platform = builtinPlatform(cmd.emulate);
   if (!cmd.costsPath.empty()) applyCostFile(cmd.costsPath, platform);
   return platform;
+}
+
+// The machine's options as the command gave them (the processor grid aside).
+MachineSettings machineSettingsOf(const RenderCommand& cmd) {
+  MachineSettings machine = cmd.machine;
+  machine.lightRays = kLightRays.at(cmd.lightRays);
+  machine.cells = kCellStructures.at(cmd.cells);
+  machine.balance = kBalances.at(cmd.balance);
+  machine.loadMetric = kLoadMetrics.at(cmd.loadMetric);
+  machine.emulate = emulatedPlatform(cmd);
+  machine.mpi = cmd.transport == "mpi";
+  return machine;
 }
 
 // "AxB" with both in [1, limit]; what names the option in the error. Digits only: a number that does not
@@ -176,18 +192,13 @@ RenderResult render(const core::Scene& scene, const RenderCommand& cmd, const Re
     case RenderMode::ImageParallel:
       return renderImageParallel(scene, settings);
     case RenderMode::Machine: {
-      MachineSettings machine = cmd.machine;
-      machine.lightRays = kLightRays.at(cmd.lightRays);
-      machine.balance = kBalances.at(cmd.balance);
-      machine.loadMetric = kLoadMetrics.at(cmd.loadMetric);
+      MachineSettings machine = machineSettingsOf(cmd);
       // Without --procs, the default grid shrinks to fit a small image rather than fail on an option the
       // user never gave.
       std::tie(machine.rows, machine.columns) =
           cmd.procs.empty() ? defaultProcessorGrid(core::View(scene.camera, settings.width, settings.height,
                                                               settings.sampling, settings.shading.raysPerSample))
                             : parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
-      machine.emulate = emulatedPlatform(cmd);
-      machine.mpi = cmd.transport == "mpi";
       report.emplace();
       return renderMachine(scene, settings, machine, &*report);
     }
@@ -244,6 +255,7 @@ std::vector<std::pair<std::string, std::string>> settingsOf(const RenderCommand&
                      {"sub-sampling window", std::to_string(cmd.machine.subsampleWindow)},
                      {"light rays", cmd.lightRays},
                      {"FIFO capacity", std::to_string(cmd.machine.queueCapacity)},
+                     {"cells", cmd.cells},
                      {"cell level", std::to_string(cmd.machine.cellLevel)}});
   return s;
 }
@@ -401,8 +413,15 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
   render
+      ->add_option("--cells", cmd.cells,
+                   "How a region holds its objects: paper (3.3's super-cells cut by depth faces) | bvh (a BVH, "
+                   "cost about logarithmic in the objects) | auto (bvh for regions of more than " +
+                       std::to_string(node::kDenseRegionObjects) +
+                       " objects; always paper when emulating, the costs being fitted to it)")
+      ->transform(CLI::IsMember(keysOf(kCellStructures), CLI::ignore_case));
+  render
       ->add_option("--cell-level", cmd.machine.cellLevel,
-                   "Recursive halvings of each pixel area into super-cells")
+                   "Recursive halvings of each pixel area into super-cells (paper cells)")
       ->check(CLI::Range(0, 8));
   render
       ->add_option("--light-rays", cmd.lightRays,
@@ -467,11 +486,7 @@ int runScaling(ScalingCommand& cmd) {
   const core::Scene scene = loadScene(cmd.render);
   RenderSettings settings = renderSettingsOf(cmd.render, scene);
   settings.progress = false;
-  MachineSettings machine = cmd.render.machine;
-  machine.lightRays = kLightRays.at(cmd.render.lightRays);
-  machine.balance = kBalances.at(cmd.render.balance);
-  machine.loadMetric = kLoadMetrics.at(cmd.render.loadMetric);
-  machine.emulate = emulatedPlatform(cmd.render);
+  MachineSettings machine = machineSettingsOf(cmd.render);
   const std::vector<ScalingPoint> points = scalingStudy(scene, settings, machine, cmd.processors);
   std::cout << scalingTable(points, scene, settings);
   if (cmd.fit > 0) {

@@ -89,6 +89,15 @@ void forEachProcessor(int processors, Visit&& visit) {
     });
 }
 
+// The processor's own copy of the objects its lists name, the lists rewritten into its local indices.
+node::RegionDatabase gatherDatabaseOf(node::NodeSetup& setup, const core::Scene& scene,
+                                      const std::vector<node::EyeBox>& boxes) {
+  std::vector<std::vector<std::uint32_t>*> lists{&setup.objects, &setup.rearObjects};
+  for (auto& objects : setup.lightObjects) lists.push_back(&objects);
+  for (auto& objects : setup.rearLightObjects) lists.push_back(&objects);
+  return node::gatherRegionDatabase(scene, boxes, lists);
+}
+
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
@@ -116,6 +125,8 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
         lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0, core::kInfinity};
     node::NodeSetup setup;
     setup.id = p;
+    setup.cells = machine.emulate && machine.cells == node::CellStructure::Auto ? node::CellStructure::Paper
+                                                                               : machine.cells;
     setup.cellLevel = machine.cellLevel;
     setup.rearObjects = rear;
     for (std::uint32_t o = 0; o < boxes.size(); ++o)
@@ -129,6 +140,7 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
       setup.rearLightSources = rearSources;
       setup.rearLightObjects = rearLightObjects;
     }
+    setup.database = gatherDatabaseOf(setup, scene, boxes);
     setups[std::size_t(p)] = std::move(setup);
   });
   return setups;
@@ -215,11 +227,9 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   std::vector<node::EyeBox> boxes;
   const double sceneExtent = 2 * scene.largestCoordinate();
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
-  // The scene is the caller's and outlives the render: the context shares it without owning it.
-  const node::MachineContext context{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene), view,
-                                     settings.shading, partition(view, load, machine), std::move(boxes)};
-  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(),
-                                                      context.eyeBoxes, machine);
+  const node::MachineContext context{view, settings.shading, partition(view, load, machine)};
+  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(), boxes,
+                                                      machine);
   RenderResult result;
   result.mode = "machine";
   result.precision = core::kPrecisionOf<Real>;

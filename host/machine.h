@@ -29,6 +29,9 @@ struct MachineSettings {
   int subsampleWindow = 8;         // 3.7.1: one sub-sampled pixel per w x w window
   LoadMetric loadMetric = LoadMetric::Cost;
   std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
+  // How each region holds its objects. Auto: a BVH for dense regions (node::chosenFor), but the paper's
+  // cells whenever the machine is emulated, whose costs were fitted to them (table 2).
+  node::CellStructure cells = node::CellStructure::Auto;
   int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
   unsigned jitterSeed = 0;  // tests: > 0 injects random delays around every transport operation
@@ -72,7 +75,7 @@ struct SimulatedRun {
 struct RankReport {
   int rank = 0;
   int processors = 0;            // logical processors it ran (the host, rank 0, runs none)
-  std::uint64_t objects = 0;     // objects of the database it held
+  std::uint64_t objects = 0;     // objects its processors held, each its own copy (RegionDatabase)
   std::uint64_t jobBytes = 0;    // the setups and context it received (rank 0: sent to all)
   std::uint64_t peakRssBytes = 0;  // its process's peak resident memory (getrusage)
   std::uint64_t messagesSent = 0, bytesSent = 0, messagesReceived = 0, bytesReceived = 0;  // MPI

@@ -13,6 +13,7 @@ template <class Real>
 std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings,
                                                 const std::vector<std::uint32_t>& hypercubeNode) {
   if (settings.mpi) {
+    if (settings.emulate) throw std::invalid_argument("the MPI engine runs on real ranks, not in simulated time");
     queues::MpiLink* link = hostMpiLink();
     if (link == nullptr) throw std::invalid_argument("the MPI engine runs on rank 0 of mpirun (host/mpi_session.h)");
     return std::make_unique<MpiMachine<Real>>(*link, settings.queueCapacity, settings.rayBatch, settings.jitterSeed);

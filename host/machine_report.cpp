@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -119,6 +120,7 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"extraLightObjects", n.extraLightObjects},
                           {"lightRaysTracedLocally", n.lightRaysTracedLocally},
                           {"cells", n.cells},
+                          {"bvh", n.bvh},
                           {"raysProcessed", rays},
                           {"raysSpawned", spawned},
                           {"raysFinished", finished},
@@ -158,6 +160,7 @@ nlohmann::json machineJson(const MachineReport& report) {
             {"costMinOverMean", balance.costMinOverMean}}},
           {"columns", report.settings.columns},
           {"queueCapacity", report.settings.queueCapacity},
+          {"cells", std::array{"auto", "paper", "bvh"}[std::size_t(report.settings.cells)]},
           {"cellLevel", report.settings.cellLevel},
           {"messageBytes", report.messageBytes},
           {"contributionsAccumulated", report.contributionsAccumulated},

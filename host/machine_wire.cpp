@@ -11,7 +11,7 @@ static_assert(std::is_trivially_copyable_v<core::View>, "the view travels as byt
 static_assert(std::is_trivially_copyable_v<ProcessorReport>);
 static_assert(std::is_trivially_copyable_v<RankReport>);
 
-// ---- The database (3.2 step 1): the scene's objects, lights, materials and camera.
+// ---- A database (3.2 step 1): objects, lights, materials and camera (a region's, see RegionDatabase).
 
 void writeObject(WireWriter& out, const core::Object& object) {
   out.value(std::uint8_t(object.shape.index()));
@@ -81,27 +81,24 @@ core::Scene readScene(WireReader& in) {
 }
 
 // ---- The context every processor shares: the partition travels as its areas, the lines as the view.
+// The objects travel in each processor's setup: its region database, not the whole scene.
 
 void writeContext(WireWriter& out, const node::MachineContext& context) {
-  writeScene(out, *context.scene);
   out.value(context.view);
   out.value(context.shading);
   std::vector<node::SampleRect> areas;
   for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
   out.vector(areas);
   out.value(context.regions.gridColumns());
-  out.vector(context.eyeBoxes);
 }
 
 node::MachineContext readContext(WireReader& in) {
-  auto scene = std::make_shared<const core::Scene>(readScene(in));
   const auto view = in.value<core::View>();
   const auto shading = in.value<core::ShadingOptions>();
   auto areas = in.vector<node::SampleRect>();
   const int gridColumns = in.value<int>();
-  return node::MachineContext{std::move(scene), view, shading,
-                              node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns),
-                              in.vector<node::EyeBox>()};
+  return node::MachineContext{view, shading,
+                              node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns)};
 }
 
 // ---- A processor's setup (3.2 step 2, 3.7.2).
@@ -131,7 +128,11 @@ std::vector<std::vector<std::uint32_t>> readObjectLists(WireReader& in) {
 
 void writeSetup(WireWriter& out, const node::NodeSetup& setup) {
   out.value(setup.id);
+  out.value(setup.cells);
   out.value(setup.cellLevel);
+  writeScene(out, setup.database.scene);
+  out.vector(setup.database.globalIds);
+  out.vector(setup.database.eyeBoxes);
   out.vector(setup.objects);
   out.vector(setup.rearObjects);
   out.value(setup.lightRays);
@@ -144,7 +145,11 @@ void writeSetup(WireWriter& out, const node::NodeSetup& setup) {
 node::NodeSetup readSetup(WireReader& in) {
   node::NodeSetup setup;
   setup.id = in.value<int>();
+  setup.cells = in.value<node::CellStructure>();
   setup.cellLevel = in.value<int>();
+  setup.database.scene = readScene(in);
+  setup.database.globalIds = in.vector<std::uint32_t>();
+  setup.database.eyeBoxes = in.vector<node::EyeBox>();
   setup.objects = in.vector<std::uint32_t>();
   setup.rearObjects = in.vector<std::uint32_t>();
   setup.lightRays = in.value<node::LightRayMode>();

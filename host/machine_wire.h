@@ -1,7 +1,8 @@
 #pragma once
 // What travels between the host and a node's address space (Priol & Bouatouch 3.2 steps 1-2: the host
-// sends each processor its setup and the database it needs), as bytes: the one place where setups,
-// context and reports are serialised. The MPI engine sends a job to each rank and gets reports back.
+// sends each processor its setup, holding the only objects it needs, its RegionDatabase), as bytes: the
+// one place where setups, context and reports are serialised. The MPI engine sends a job to each rank
+// (the shared context and the setups of its processors) and gets reports back.
 #include <array>
 #include <bit>
 #include <cstdint>

@@ -124,7 +124,6 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
   distributed.rayBatch = rayBatch_;
   const queues::MpiTraffic& after = link_.traffic();
   RankReport host;
-  host.objects = context.scene->objects.size();
   host.jobBytes = jobBytes;
   host.peakRssBytes = peakResidentBytes();
   host.messagesSent = after.messagesSent - before.messagesSent;

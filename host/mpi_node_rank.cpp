@@ -59,8 +59,10 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
   std::vector<std::unique_ptr<queues::JitterTransport<Real>>> jitters;
   std::vector<node::BasicTransport<Real>*> transports;
   std::vector<int> ids;
+  std::uint64_t objectsHeld = 0;
   for (const node::NodeSetup& s : job.setups) {
     ids.push_back(s.id);
+    objectsHeld += s.database.size();
     transports.push_back(&net.endpoint(s.id));
     if (job.settings.jitterSeed > 0) {
       jitters.push_back(std::make_unique<queues::JitterTransport<Real>>(
@@ -122,7 +124,7 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
   RankReport& r = results.rank;
   r.rank = link.rank();
   r.processors = int(local);
-  r.objects = job.context.scene->objects.size();
+  r.objects = objectsHeld;
   r.jobBytes = jobBytes;
   r.peakRssBytes = peakResidentBytes();
   r.messagesSent = after.messagesSent - before.messagesSent + 1;  // with the results

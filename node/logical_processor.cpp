@@ -1,6 +1,7 @@
 #include "node/logical_processor.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/ray_tree.h"
 #include "core/transmission.h"
@@ -12,12 +13,14 @@ template <class Real>
 LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetup setup,
                                          BasicTransport<Real>& transport)
     : context_(context),
-      scene_(*context.scene),
-      shading_(scene_, context.shading),
       setup_(std::move(setup)),
+      scene_(setup_.database.scene),
+      shading_(scene_, context.shading),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
-      cells_(area_, context.lines(), setup_.cellLevel, setup_.objects, context.eyeBoxes),
+      structure_(chosenFor(setup_.cells, setup_.objects.size())),
+      cells_(area_, context.lines(), structure_ == CellStructure::Bvh ? 0 : setup_.cellLevel,
+             structure_ == CellStructure::Paper, setup_.objects, setup_.database.eyeBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
       inbox_(scheduling::kInboxBatch),
@@ -29,6 +32,10 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.objects = cells_.objectCount();
   stats_.rearObjects = setup_.rearObjects.size();
   stats_.cells = cells_.cellCount();
+  if (structure_ == CellStructure::Bvh) {
+    regionBvh_.emplace(scene_, shading_, setup_.objects);
+    stats_.bvh = true;
+  }
   if (setup_.lightRays != LightRayMode::Messages) {
     std::vector<char> inCells(scene_.objects.size(), 0);
     for (std::uint32_t o : setup_.objects) inCells[o] = 1;
@@ -93,11 +100,37 @@ void LogicalProcessor<Real>::evaluateLocalRays() {
   }
 }
 
-// Tests `objects` for the part [ta, tb) of the ray's interval this cell owns. Closest-hit rays stop at the
-// first interval holding a hit; light rays multiply the transmittances they cross and stop at an opaque one.
+namespace {
+
+// The candidates of a cell of the paper's: every object it lists.
+template <class Real, class Visit>
+void forEachCandidate(const std::vector<std::uint32_t>& objects, const core::BasicRay<Real>&, double, double,
+                      const Real&, core::TraceCounters&, Visit&& visit) {
+  for (std::uint32_t object : objects)
+    if (!visit(object)) return;
+}
+
+// The candidates of a region in a BVH: the objects whose boxes the ray meets in [ta, tb] (rounded outwards
+// in Real), nearest first, no farther than tLimit.
 template <class Real>
-template <class Cells>
-bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, double tb, const Cells& objects,
+Real roundedTowards(double t, double direction) {
+  const Real r = Real(t);
+  return (direction < 0 ? double(r) > t : double(r) < t) ? std::nextafter(r, Real(direction)) : r;
+}
+template <class Real, class Visit>
+void forEachCandidate(const core::BasicBvh<Real>& bvh, const core::BasicRay<Real>& ray, double ta, double,
+                      const Real& tLimit, core::TraceCounters& counters, Visit&& visit) {
+  bvh.traverse(ray, std::max(ray.tMin, roundedTowards<Real>(ta, -core::kInfinity)), tLimit, counters, visit);
+}
+
+}  // namespace
+
+// Tests `objects` (a cell's list, or the region's BVH) for the part [ta, tb) of the ray's interval this
+// cell owns. Closest-hit rays stop at the first interval holding a hit; light rays multiply the
+// transmittances they cross and stop at an opaque one.
+template <class Real>
+template <class Objects>
+bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects,
                                            core::Hit& hit, double& attenuation) {
   const core::Scene& scene = scene_;
   const double tLimit = ray.kind == core::RayKind::Shadow ? ray.ray.tMax : core::kInfinity;
@@ -109,24 +142,33 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
     }
     return mailboxT_[object];
   };
+  // How far along the ray a candidate's box may start: the interval's end, then the best hit so far.
+  Real bound = roundedTowards<Real>(std::min(tb, tLimit), core::kInfinity);
   if (ray.kind == core::RayKind::Shadow) {
     crossed_.clear();
-    for (std::uint32_t object : objects) {
+    bool opaque = false;
+    forEachCandidate(objects, ray.ray, ta, tb, bound, stats_.processed, [&](std::uint32_t object) {
       const double t = nearest(object);
-      if (t < ta || t >= tb) continue;
-      if (!shading_.transmissive(object)) {
-        attenuation = 0;
-        return false;
-      }
-      crossed_.push_back(core::Hit{t, object});
+      if (t < ta || t >= tb) return true;
+      opaque = !shading_.transmissive(object);
+      if (!opaque) crossed_.push_back(core::Hit{t, object});
+      return !opaque;
+    });
+    if (opaque) {
+      attenuation = 0;
+      return false;
     }
     if (!crossed_.empty()) attenuation = core::attenuate(attenuation, crossed_, shading_);
     return attenuation > 0;
   }
-  for (std::uint32_t object : objects) {
+  forEachCandidate(objects, ray.ray, ta, tb, bound, stats_.processed, [&](std::uint32_t object) {
     const core::Hit h{nearest(object), object};
-    if (h.t >= ta && h.t < tb && h.closerThan(hit)) hit = h;
-  }
+    if (h.t >= ta && h.t < tb && h.closerThan(hit)) {
+      hit = h;
+      bound = Real(h.t);
+    }
+    return true;
+  });
   return !hit.found();
 }
 
@@ -148,7 +190,8 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   double attenuation = m.attenuation;
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
-    return visitInterval(ray, ta, tb, objects, hit, attenuation);
+    return regionBvh_ ? visitInterval(ray, ta, tb, *regionBvh_, hit, attenuation)
+                      : visitInterval(ray, ta, tb, objects, hit, attenuation);
   };
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
   auto lastPart = [&](double tEnd) { return tEnd >= tMax || er.partEnd(t) == core::kInfinity; };
@@ -162,7 +205,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     const double tEnd = std::min(er.partEnd(t), tMax);
     if (!er.inFront(t)) {
       // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
-      if ((t < tEnd && !visit(t, tEnd, setup_.rearObjects)) || lastPart(tEnd))
+      if ((t < tEnd && !visitInterval(ray, t, tEnd, setup_.rearObjects, hit, attenuation)) || lastPart(tEnd))
         return finishRay(ray, hit, attenuation);
       t = tEnd;
       if (const int owner = context_.regions.ownerAt(er, t); owner != setup_.id) return leaveFor(owner, t);

@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "node/light_volume.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
+#include "node/region_database.h"
 #include "node/region_map.h"
 #include "node/machine_context.h"
 #include "node/safra_termination.h"
@@ -25,10 +27,13 @@
 
 namespace raycube::node {
 
-// What the host hands a processor (3.2 steps 1-2): its place, its pixel area, its pruned objects.
+// What the host hands a processor (3.2 steps 1-2): its place, its pixel area, its pruned objects. Every
+// object list holds local indices into `database`.
 struct NodeSetup {
   int id = 0;
+  CellStructure cells = CellStructure::Auto;  // the paper's cells or a BVH (Auto: by the region's objects)
   int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
+  RegionDatabase database;                 // the only objects this processor holds
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
   std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
   // 3.7.2: with light cones or pyramids, the objects each light's rays from this region can meet, and the
@@ -45,6 +50,7 @@ struct NodeStats {
   int id = 0;
   SampleRect area;
   std::size_t objects = 0, rearObjects = 0, cells = 0;
+  bool bvh = false;                   // the region's objects in a BVH rather than the paper's cells
   std::size_t lightObjects = 0;       // objects held for light rays (summed over lights)
   std::size_t extraLightObjects = 0;  // of those, objects not already in the region's cells
   std::uint64_t lightRaysTracedLocally = 0;
@@ -91,8 +97,8 @@ class LogicalProcessor {
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double attenuation);
   bool tracedWhereItStarts(const Message& message, double& transmission);
-  template <class Cells>
-  bool visitInterval(const TracedRay& ray, double ta, double tb, const Cells& objects, core::Hit& hit,
+  template <class Objects>
+  bool visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects, core::Hit& hit,
                      double& attenuation);
   void deliver(const core::BasicRayOutcome<Real>& outcome);
   // Communication task
@@ -106,12 +112,14 @@ class LogicalProcessor {
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
 
   const MachineContext& context_;
-  const core::Scene& scene_;
-  core::Whitted shading_;
   NodeSetup setup_;
+  const core::Scene& scene_;  // the region's database
+  core::Whitted shading_;
   BasicTransport<Real>& transport_;
   SampleRect area_;
+  CellStructure structure_;  // Paper or Bvh
   RegionCells cells_;
+  std::optional<core::BasicBvh<Real>> regionBvh_;  // the region's objects, with CellStructure::Bvh
   std::vector<core::BasicBvh<Real>> lightVolumes_;  // per light, when light rays are traced where they start
   std::vector<core::BasicBvh<Real>> rearLightVolumes_;  // per light, for light rays starting behind the eye
   long long nextPrimary_ = 0;

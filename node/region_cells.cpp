@@ -1,7 +1,6 @@
 #include "node/region_cells.h"
 
 #include <algorithm>
-#include <set>
 
 namespace raycube::node {
 namespace {
@@ -23,7 +22,7 @@ std::vector<int> halvings(int lo, int hi, int level) {
 
 }  // namespace
 
-RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int level,
+RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int level, bool depthCuts,
                          const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& eyeBoxes) {
   sampleBounds_[0] = halvings(area.x0, area.x1, level);
   sampleBounds_[1] = halvings(area.y0, area.y1, level);
@@ -31,7 +30,9 @@ RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int l
     for (int k : sampleBounds_[axis]) bounds_[axis].push_back(lines.at(axis, k));
   columnsX_ = int(bounds_[0].size()) - 1;
   const int rows = int(bounds_[1].size()) - 1;
-  std::set<std::uint32_t> distinct;
+  std::uint32_t largest = 0;
+  for (std::uint32_t object : objects) largest = std::max(largest, object);
+  std::vector<char> held(objects.empty() ? 0 : largest + 1u, 0);
   columns_.resize(std::size_t(columnsX_) * rows);
   for (int j = 0; j < rows; ++j) {
     for (int i = 0; i < columnsX_; ++i) {
@@ -42,8 +43,8 @@ RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int l
         const EyeBox& box = eyeBoxes[object];
         if (!mayTouch(box, slab)) continue;
         inColumn.push_back(object);
-        if (box.lo.z > 0) splits.push_back(box.lo.z);
-        if (box.hi.z > 0) splits.push_back(box.hi.z);
+        if (depthCuts && box.lo.z > 0) splits.push_back(box.lo.z);
+        if (depthCuts && box.hi.z > 0) splits.push_back(box.hi.z);
       }
       std::sort(splits.begin(), splits.end());
       splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
@@ -56,13 +57,13 @@ RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int l
         for (std::uint32_t object : inColumn)
           if (mayTouch(eyeBoxes[object], slab)) {
             column.cellObjects[k].push_back(object);
-            distinct.insert(object);
+            held[object] = 1;
           }
       }
       cellCount_ += column.cellObjects.size();
     }
   }
-  objectCount_ = distinct.size();
+  objectCount_ = std::size_t(std::count(held.begin(), held.end(), 1));
 }
 
 int RegionCells::locateIn(const std::vector<double>& bounds, double value) {

@@ -22,10 +22,24 @@ struct RegionExit {
 
 enum class WalkResult : std::uint8_t { Stopped, Finished, Exited };
 
+// How a region organises its objects. Paper: the cells of 3.3. Bvh: one cell spanning the whole region (its
+// pyramid still bounds the ray's interval), whose objects a BVH visits: the paper's cells suit a few dozen
+// objects, their depth cuts explode on thousands, a BVH's cost grows about logarithmically. Auto: the
+// paper's cells for sparse regions, a BVH for dense ones (the host decides per region, see host/machine.h).
+enum class CellStructure : std::uint8_t { Auto, Paper, Bvh };
+
+// Auto's threshold: a region holding more objects than this is dense.
+inline constexpr std::size_t kDenseRegionObjects = 64;
+inline CellStructure chosenFor(CellStructure requested, std::size_t regionObjects) {
+  if (requested != CellStructure::Auto) return requested;
+  return regionObjects > kDenseRegionObjects ? CellStructure::Bvh : CellStructure::Paper;
+}
+
 class RegionCells {
  public:
-  // objects: indices into the scene with their eye boxes; only those touching the region are kept.
-  RegionCells(const SampleRect& area, const ScreenLines& lines, int level,
+  // objects: indices into the database with their eye boxes; only those touching the region are kept.
+  // depthCuts: cut each column by its objects' depth faces (3.3); without, a column is one cell.
+  RegionCells(const SampleRect& area, const ScreenLines& lines, int level, bool depthCuts,
               const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& eyeBoxes);
 
   // Walks [t, tEnd) from the column containing the ray at t (or the given sample's column for eye rays),

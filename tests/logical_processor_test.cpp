@@ -99,22 +99,23 @@ class LogicalProcessorTest : public ::testing::Test {
       for (int k = 0; k <= parts; ++k) c.push_back(samples * k / parts);
       return c;
     };
-    std::vector<EyeBox> boxes;
-    for (const core::Object& o : scene_.objects) boxes.push_back(eyeBoxOf(o, view, 2 * scene_.largestCoordinate()));
-    return MachineContext{std::shared_ptr<const core::Scene>(std::shared_ptr<void>(), &scene_), view,
-                          core::ShadingOptions{},
-                          RegionMap::grid(cuts(kSide, columns), cuts(kSide, rows), lines), boxes};
+    return MachineContext{view, core::ShadingOptions{}, RegionMap::grid(cuts(kSide, columns), cuts(kSide, rows), lines)};
   }
 
   // Every object offered to every node (the node keeps those touching its region), light rays as messages.
-  static NodeSetup setupFor(const MachineContext& context, int id) {
+  NodeSetup setupFor(const MachineContext& context, int id) const {
     NodeSetup s;
     s.id = id;
     s.lightRays = LightRayMode::Messages;
-    for (std::uint32_t o = 0; o < context.eyeBoxes.size(); ++o) {
+    std::vector<EyeBox> boxes;
+    for (const core::Object& o : scene_.objects)
+      boxes.push_back(eyeBoxOf(o, context.view, 2 * scene_.largestCoordinate()));
+    for (std::uint32_t o = 0; o < boxes.size(); ++o) {
       s.objects.push_back(o);
-      if (reachesBehindEye(context.eyeBoxes[o])) s.rearObjects.push_back(o);
+      if (reachesBehindEye(boxes[o])) s.rearObjects.push_back(o);
     }
+    std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects};
+    s.database = gatherRegionDatabase(scene_, boxes, lists);
     return s;
   }
 

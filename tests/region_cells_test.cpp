@@ -65,7 +65,7 @@ TEST(EyeFrameRay, SplitsTheLineAtTheEyePlane) {
 TEST(RegionCells, WalkCoversTheIntervalContiguously) {
   Fixture f;
   const SampleRect area{16, 48, 12, 36};
-  const RegionCells cells(area, f.lines, 2, f.all, f.boxes);
+  const RegionCells cells(area, f.lines, 2, true, f.all, f.boxes);
   EXPECT_GT(cells.cellCount(), 16u);
   std::mt19937 random(7);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -108,7 +108,7 @@ TEST(RegionCells, WalkCoversTheIntervalContiguously) {
 TEST(RegionCells, TheCellOwningAHitHoldsItsObject) {
   Fixture f;
   const SampleRect whole{0, 64, 0, 48};
-  const RegionCells cells(whole, f.lines, 3, f.all, f.boxes);
+  const RegionCells cells(whole, f.lines, 3, true, f.all, f.boxes);
   const core::Whitted shading(f.scene, {});
   const core::BruteForce reference(f.scene, shading);
   core::TraceCounters counters;

@@ -1,0 +1,28 @@
+#pragma once
+// What a processor holds of the database (Priol & Bouatouch 3.2 step 1): only the objects its region, the
+// rear space and its light volumes need, copied out of the scene with the scene's materials, lights, camera
+// and background. A plain value, so a host can send it to a node in another address space (an MPI rank).
+// Local object i is global object globalIds[i]; local order is global order, so every tie between hits
+// ("the lower index wins") is decided exactly as in the whole scene.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/scene.h"
+#include "node/eye_box.h"
+
+namespace raycube::node {
+
+struct RegionDatabase {
+  core::Scene scene;                       // the held objects, in ascending global index order
+  std::vector<std::uint32_t> globalIds;    // per local object
+  std::vector<EyeBox> eyeBoxes;            // per local object
+  std::size_t size() const { return globalIds.size(); }
+};
+
+// The database holding every object named in `lists` (global indices into `scene`, whose eye boxes are
+// `eyeBoxes`); rewrites each list in place into local indices of that database.
+RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
+                                    std::span<std::vector<std::uint32_t>* const> lists);
+
+}  // namespace raycube::node
