@@ -253,13 +253,15 @@ void MpiInterconnect<Real>::terminateHere() {
 template <class Real>
 void MpiInterconnect<Real>::onPacket(int from, Packet kind, std::span<const char> bytes, const ServeHooks& hooks) {
   switch (kind) {
-    case Packet::Rays:
+    case Packet::Rays: {
+      RemoteIn* in = nullptr;  // a batch's rays mostly share their edge: look it up when it changes
       return forEachEntry<WireRay<Real>>(bytes, [&](const WireRay<Real>& r) {
-        RemoteIn& in = *remoteIn_.at({r.from, r.to});
-        if (!in.queue.tryPush(r.message))
+        if (in == nullptr || in->from != r.from || in->to != r.to) in = remoteIn_.at({r.from, r.to}).get();
+        if (!in->queue.tryPush(r.message))
           throw std::logic_error("a rank sent more rays than the FIFO's credits allow");
-        ++in.pushed;
+        ++in->pushed;
       });
+    }
     case Packet::Credits:
       return forEachEntry<WireCredit>(bytes, [&](const WireCredit& c) {
         remoteOutByEdge_.at({c.from, c.to})->credits.fetch_add(c.count, std::memory_order_acq_rel);
