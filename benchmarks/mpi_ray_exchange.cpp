@@ -102,9 +102,10 @@ int main(int argc, char** argv) {
     const int runs = argc > 2 ? std::atoi(argv[2]) : 5;
     const core::View view(core::Camera{}, 2, 1, core::Sampling::Centers);
     const node::RegionMap regions = node::RegionMap::grid({0, 1, 2}, {0, 1}, node::ScreenLines(view));
-    const Config configs[] = {{"shared-memory FIFO (one rank)", {1, 1}, 16},
-                              {"two ranks, batched 16", {1, 2}, 16},
-                              {"two ranks, unbatched", {1, 2}, 1}};
+    std::vector<Config> configs = {{"shared-memory FIFO (one rank)", {1, 1}, 16},
+                                   {"two ranks, batched 16", {1, 2}, 16},
+                                   {"two ranks, unbatched", {1, 2}, 1}};
+    if (argc > 3) configs = {configs[std::size_t(std::atoi(argv[3]))]};
     std::uint32_t job = 0;
     for (const Config& config : configs) {
       std::vector<double> rates;

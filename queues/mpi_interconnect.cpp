@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <thread>
@@ -32,8 +34,11 @@ void append(std::vector<char>& bytes, const T& value) {
   bytes.insert(bytes.end(), p, p + sizeof value);
 }
 
-// The communication task sleeps this long at most when idle: MPI messages arriving ring no bell.
+// The communication task sleeps this long at most when idle (MPI messages arriving ring no bell), and
+// much less while rays it sent await their credits or rays it received await their processor.
 constexpr auto kLongestNap = std::chrono::microseconds(400);
+constexpr auto kShortestNap = std::chrono::microseconds(20);
+constexpr int kYieldsIdle = 16, kYieldsInFlight = 256;
 constexpr auto kProgressPeriod = std::chrono::milliseconds(100);
 constexpr std::size_t kContributionsPerPacket = 4096;
 
@@ -175,6 +180,8 @@ MpiInterconnect<Real>::MpiInterconnect(const node::RegionMap& regions, MpiWiring
       incoming_(std::size_t(regions.processors())),
       batches_(std::size_t(link.size())),
       batchRays_(std::size_t(link.size()), 0),
+      scratch_(wiring_.rayBatch),
+      creditPackets_(std::size_t(link.size())),
       localIds_(processorsOfRank(wiring_.rankOf, link.rank())),
       contributions_(localIds_.size(), node::scheduling::kContributionBlocksPerProcessor, [&] {
         std::vector<Doorbell*> bells;
@@ -279,14 +286,15 @@ void MpiInterconnect<Real>::onPacket(int from, Packet kind, std::span<const char
 // Rays the processors handed over, into each destination rank's batch; full batches leave at once.
 template <class Real>
 bool MpiInterconnect<Real>::collectRays(bool& anyGrew, std::vector<char>& grew) {
-  std::vector<Message> scratch(wiring_.rayBatch);
   for (const auto& out : remoteOut_) {
     for (;;) {
       const std::size_t room = wiring_.rayBatch - std::size_t(batchRays_[out->rank]);
-      const std::size_t n = out->queue.tryPopN(std::span<Message>(scratch.data(), room));
+      const std::size_t n = out->queue.tryPopN(std::span<Message>(scratch_.data(), room));
       if (n == 0) break;
+      std::vector<char>& batch = batches_[out->rank];
+      if (batch.empty()) batch.reserve(wiring_.rayBatch * sizeof(WireRay<Real>));
       for (std::size_t k = 0; k < n; ++k)
-        append(batches_[out->rank], WireRay<Real>{std::uint16_t(out->from), std::uint16_t(out->to), scratch[k]});
+        append(batch, WireRay<Real>{std::uint16_t(out->from), std::uint16_t(out->to), scratch_[k]});
       batchRays_[out->rank] += int(n);
       grew[out->rank] = 1;
       anyGrew = true;
@@ -309,7 +317,8 @@ void MpiInterconnect<Real>::sendRays(int rank) {
 // when the processor has stopped taking (so a FIFO of capacity 1 still moves).
 template <class Real>
 bool MpiInterconnect<Real>::returnCredits(bool flushAll) {
-  std::map<int, std::vector<char>> packets;
+  std::vector<std::vector<char>>& packets = creditPackets_;  // per rank
+  bool any = false;
   for (auto& [edge, in] : remoteIn_) {
     const std::uint64_t consumed = in->pushed - in->queue.size();
     const std::uint64_t pending = consumed - in->returned;
@@ -319,8 +328,13 @@ bool MpiInterconnect<Real>::returnCredits(bool flushAll) {
     append(packets[in->rank], WireCredit{std::uint16_t(in->from), std::uint16_t(in->to), std::uint32_t(pending)});
     in->returned = consumed;
   }
-  for (auto& [rank, bytes] : packets) link_.post(rank, Packet::Credits, std::move(bytes));
-  return !packets.empty();
+  for (std::size_t rank = 0; rank < packets.size(); ++rank) {
+    if (packets[rank].empty()) continue;
+    link_.post(int(rank), Packet::Credits, std::move(packets[rank]));
+    packets[rank] = {};
+    any = true;
+  }
+  return any;
 }
 
 template <class Real>
@@ -353,6 +367,8 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
   auto nextProgress = Clock::now() + kProgressPeriod;
   long long reportedShot = -1;
   int idlePasses = 0;
+  auto lastWork = Clock::now();
+  bool described = false;
   for (;;) {
     bool worked = link_.poll(handle) > 0;
     bool anyGrew = false;
@@ -381,17 +397,50 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
     }
     if (worked) {
       idlePasses = 0;
+      lastWork = Clock::now();
       continue;
     }
-    if (++idlePasses < 16) {
+    if (!described && Clock::now() - lastWork > std::chrono::seconds(10) && std::getenv("RAYCUBE_MPI_DEBUG")) {
+      std::fprintf(stderr, "%s\n", describe().c_str());
+      described = true;
+    }
+    // Rays in flight either way: credits or rays will arrive soon, and nothing rings for them, so the task
+    // yields longer before it naps, and naps shorter.
+    const bool inFlight = raysInFlight();
+    const int yields = inFlight ? kYieldsInFlight : kYieldsIdle;
+    if (++idlePasses < yields) {
       std::this_thread::yield();
     } else {
       taskBell_.sleepFor(std::min<std::chrono::microseconds>(
-          kLongestNap, std::chrono::microseconds(10 << std::min(idlePasses - 16, 6))));
+          inFlight ? kShortestNap : kLongestNap, std::chrono::microseconds(10 << std::min(idlePasses - yields, 6))));
     }
   }
   announceTermination();
   forwardContributions(true);
+}
+
+template <class Real>
+std::string MpiInterconnect<Real>::describe() const {
+  std::string text = "rank " + std::to_string(link_.rank()) + (terminated() ? " (terminated)" : "") + ":";
+  for (const auto& out : remoteOut_)
+    text += " out " + std::to_string(out->from) + "->" + std::to_string(out->to) + " credits " +
+            std::to_string(out->credits.load()) + " queued " + std::to_string(out->queue.size()) + ";";
+  for (const auto& [edge, in] : remoteIn_)
+    text += " in " + std::to_string(in->from) + "->" + std::to_string(in->to) + " pushed " +
+            std::to_string(in->pushed) + " waiting " + std::to_string(in->queue.size()) + " returned " +
+            std::to_string(in->returned) + ";";
+  for (int r = 0; r < link_.size(); ++r)
+    if (batchRays_[r] > 0) text += " batch for rank " + std::to_string(r) + ": " + std::to_string(batchRays_[r]) + ";";
+  return text;
+}
+
+template <class Real>
+bool MpiInterconnect<Real>::raysInFlight() const {
+  for (const auto& out : remoteOut_)
+    if (out->credits.load(std::memory_order_relaxed) < std::int64_t(wiring_.capacity)) return true;
+  for (const auto& [edge, in] : remoteIn_)
+    if (in->pushed != in->returned) return true;
+  return false;
 }
 
 // Processor 0 proved termination here: every other rank of processors learns it.

@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "node/region_map.h"
@@ -69,6 +70,9 @@ class MpiInterconnect {
   // nothing from this rank but its results.
   void serve(const ServeHooks& hooks);
   const MpiRayTraffic& rayTraffic() const { return rayTraffic_; }
+  // Per edge to or from another rank: credits, rays waiting, rays taken and credits returned (a hang's
+  // diagnosis). Reads the communication task's counters: call it from that thread, or once it has stopped.
+  std::string describe() const;
 
  private:
   class Endpoint;
@@ -101,6 +105,7 @@ class MpiInterconnect {
   bool forwardToken();
   bool forwardContributions(bool flush);
   bool announceTermination();
+  bool raysInFlight() const;
 
   const node::RegionMap& regions_;
   MpiWiring wiring_;
@@ -119,6 +124,8 @@ class MpiInterconnect {
   std::map<std::pair<int, int>, RemoteOut*> remoteOutByEdge_;
   std::vector<std::vector<char>> batches_;  // per rank: rays waiting for an MPI message
   std::vector<int> batchRays_;
+  std::vector<Message> scratch_;                   // rays on their way from a FIFO into a batch
+  std::vector<std::vector<char>> creditPackets_;  // per rank: credits waiting for an MPI message
   std::atomic<bool> terminated_{false};
   std::atomic<bool> announced_{false};
   struct {
