@@ -61,16 +61,26 @@ std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin
   const std::uint32_t count = end - begin;
   int bestAxis = -1, bestBin = 0;
   double bestCost = double(count);  // cost of a leaf, in object tests
-  for (int axis = 0; axis < 3 && count > kLeafSize && depth < kMaxDepth; ++axis) {
-    const double lo = centroids.lo[axis], width = centroids.hi[axis] - lo;
-    if (!(width > 0)) continue;
-    Box binBox[kBins];
-    std::uint32_t binCount[kBins] = {};
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const int b = std::min(kBins - 1, int(kBins * (boxes[order_[i]].center()[axis] - lo) / width));
-      binBox[b].extend(boxes[order_[i]]);
-      ++binCount[b];
+  // The three axes binned in one pass over the boxes (each box read once).
+  Box binBoxes[3][kBins];
+  std::uint32_t binCounts[3][kBins] = {};
+  const bool split = count > kLeafSize && depth < kMaxDepth;
+  for (std::uint32_t i = begin; i < end && split; ++i) {
+    const Box& box = boxes[order_[i]];
+    const Vec3 centre = box.center();
+    for (int axis = 0; axis < 3; ++axis) {
+      const double lo = centroids.lo[axis], width = centroids.hi[axis] - lo;
+      if (!(width > 0)) continue;
+      const int b = std::min(kBins - 1, int(kBins * (centre[axis] - lo) / width));
+      binBoxes[axis][b].extend(box);
+      ++binCounts[axis][b];
     }
+  }
+  for (int axis = 0; axis < 3 && split; ++axis) {
+    const double width = centroids.hi[axis] - centroids.lo[axis];
+    if (!(width > 0)) continue;
+    const Box* binBox = binBoxes[axis];
+    const std::uint32_t* binCount = binCounts[axis];
     double rightArea[kBins];
     std::uint32_t rightCount[kBins];
     Box acc;

@@ -7,12 +7,14 @@
 #include <thread>
 
 #include "core/framebuffer.h"
+#include "core/intersect.h"
 #include "host/bsp_partition.h"
 #include "host/hypercube_mapping.h"
 #include "host/machine_engine.h"
 #include "host/machine_checks.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
+#include "node/box_tree.h"
 
 namespace raycube::host {
 namespace {
@@ -105,18 +107,24 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
                                            const node::RegionMap& regions, const node::ScreenLines& lines,
                                            const std::vector<node::EyeBox>& boxes,
                                            const MachineSettings& machine) {
-  std::vector<std::uint32_t> all(boxes.size());
-  for (std::uint32_t o = 0; o < all.size(); ++o) all[o] = o;
   std::vector<std::uint32_t> rear;
   for (std::uint32_t o = 0; o < boxes.size(); ++o)
     if (node::reachesBehindEye(boxes[o])) rear.push_back(o);
+  // Spatial queries: the objects' eye boxes for the regions, their world boxes for the light volumes.
+  std::vector<core::Box> eyeFrame, world;
+  for (const node::EyeBox& b : boxes) eyeFrame.push_back(core::Box{b.lo, b.hi});
+  const node::BoxTree inEyeFrame(eyeFrame);
+  const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
+  if (lightVolumes)
+    for (const core::Object& o : scene.objects) world.push_back(core::boundsOf(o, core::kCellMarginRelative));
+  const node::BoxTree inWorld(world);
   std::vector<std::vector<std::uint32_t>> rearLightObjects;
   node::LightSources rearSources;
-  if (machine.lightRays != node::LightRayMode::Messages) {
+  if (lightVolumes) {
     rearSources = rearLightSourcesOf(rear, boxes, view);
     for (const core::Light& light : scene.lights)
       rearLightObjects.push_back(
-          node::objectsInLightVolume(machine.lightRays, light.position, rearSources, scene, all));
+          node::objectsInLightVolume(machine.lightRays, light.position, rearSources, inWorld));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
   forEachProcessor(regions.processors(), [&](int p) {
@@ -129,14 +137,14 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
                                                                                : machine.cells;
     setup.cellLevel = machine.cellLevel;
     setup.rearObjects = rear;
-    for (std::uint32_t o = 0; o < boxes.size(); ++o)
-      if (node::mayTouch(boxes[o], region)) setup.objects.push_back(o);
+    setup.objects =
+        inEyeFrame.query([&](const core::Box& b) { return node::mayTouch(node::EyeBox{b.lo, b.hi}, region); });
     setup.lightRays = machine.lightRays;
-    if (machine.lightRays != node::LightRayMode::Messages) {
+    if (lightVolumes) {
       setup.lightSources = lightSourcesOf(region, setup.objects, boxes, view);
       for (const core::Light& light : scene.lights)
         setup.lightObjects.push_back(
-            node::objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, scene, all));
+            node::objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
       setup.rearLightSources = rearSources;
       setup.rearLightObjects = rearLightObjects;
     }

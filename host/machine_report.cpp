@@ -121,6 +121,7 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"lightRaysTracedLocally", n.lightRaysTracedLocally},
                           {"cells", n.cells},
                           {"bvh", n.bvh},
+                          {"heldObjects", n.heldObjects},
                           {"raysProcessed", rays},
                           {"raysSpawned", spawned},
                           {"raysFinished", finished},

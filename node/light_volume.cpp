@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/intersect.h"
 #include "core/tolerances.h"
 
 namespace raycube::node {
@@ -80,6 +79,20 @@ bool boxMayMeetPyramid(const core::Box& box, const Pyramid& p) {
   return !(outside[0] || outside[1] || outside[2] || outside[3] || outside[4] || outside[5]);
 }
 
+// Every corner strictly inside the pyramid, by a margin: the box, and all it holds, lies inside.
+bool boxInsidePyramid(const core::Box& box, const Pyramid& p) {
+  const double m = core::kCellMarginRelative;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 l = p.frame.to(Vec3(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
+                                   corner & 4 ? box.hi.z : box.lo.z));
+    const double slack = m * (1 + glm::length(l));
+    if (!(l.z > slack && l.z < p.zMax - slack && l.x < p.xMax * l.z - slack && l.x > p.xMin * l.z + slack &&
+          l.y < p.yMax * l.z - slack && l.y > p.yMin * l.z + slack))
+      return false;
+  }
+  return true;
+}
+
 // Figure 12: the cone from the light around the sources' bounding sphere, truncated by the plane beyond
 // the sphere; an object is kept when its bounding sphere meets the truncated cone.
 struct Cone {
@@ -117,25 +130,19 @@ bool sphereMayMeetCone(const Vec3& centre, double r, const Cone& cone) {
 }  // namespace
 
 std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::Vec3& light,
-                                                const LightSources& sources, const core::Scene& scene,
-                                                const std::vector<std::uint32_t>& candidates) {
+                                                const LightSources& sources, const BoxTree& objects) {
   if (sources.eyeBox.empty() || mode == LightRayMode::Messages) return {};
-  std::vector<std::uint32_t> kept;
+  auto every = [](const core::Box&) { return true; };
   if (mode == LightRayMode::Pyramid) {
     Pyramid pyramid;
-    if (!buildPyramid(light, sources, pyramid)) return candidates;
-    for (std::uint32_t o : candidates)
-      if (boxMayMeetPyramid(core::boundsOf(scene.objects[o], core::kCellMarginRelative), pyramid))
-        kept.push_back(o);
-    return kept;
+    if (!buildPyramid(light, sources, pyramid)) return objects.query(every);
+    return objects.query([&](const core::Box& b) { return boxMayMeetPyramid(b, pyramid); },
+                         [&](const core::Box& b) { return boxInsidePyramid(b, pyramid); });
   }
   Cone cone;
-  if (!buildCone(light, sources, cone)) return candidates;
-  for (std::uint32_t o : candidates) {
-    const core::Box b = core::boundsOf(scene.objects[o], core::kCellMarginRelative);
-    if (sphereMayMeetCone(b.center(), 0.5 * glm::length(b.extent()), cone)) kept.push_back(o);
-  }
-  return kept;
+  if (!buildCone(light, sources, cone)) return objects.query(every);
+  return objects.query(
+      [&](const core::Box& b) { return sphereMayMeetCone(b.center(), 0.5 * glm::length(b.extent()), cone); });
 }
 
 }  // namespace raycube::node

@@ -7,6 +7,7 @@
 
 #include "core/box.h"
 #include "core/scene.h"
+#include "node/box_tree.h"
 
 namespace raycube::node {
 
@@ -19,10 +20,10 @@ struct LightSources {
   std::vector<core::Vec3> corners;
 };
 
-// Objects (indices into the scene, from `candidates`) the segments from any point of `sources` to `light`
-// may meet. Conservative; every candidate when the light lies among the sources (the volume degenerates).
+// Objects (indices into `objects`, a tree of the scene's world boxes widened by kCellMarginRelative, in
+// ascending order) the segments from any point of `sources` to `light` may meet. Conservative; every object
+// when the light lies among the sources (the volume degenerates).
 std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::Vec3& light,
-                                                const LightSources& sources, const core::Scene& scene,
-                                                const std::vector<std::uint32_t>& candidates);
+                                                const LightSources& sources, const BoxTree& objects);
 
 }  // namespace raycube::node

@@ -31,22 +31,22 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.area = area_;
   stats_.objects = cells_.objectCount();
   stats_.rearObjects = setup_.rearObjects.size();
+  stats_.heldObjects = setup_.database.size();
   stats_.cells = cells_.cellCount();
-  if (structure_ == CellStructure::Bvh) {
-    regionBvh_.emplace(scene_, shading_, setup_.objects);
-    stats_.bvh = true;
-  }
+  stats_.bvh = structure_ == CellStructure::Bvh;
+  if (stats_.bvh || setup_.lightRays != LightRayMode::Messages) databaseBvh_.emplace(scene_, shading_);
   if (setup_.lightRays != LightRayMode::Messages) {
     std::vector<char> inCells(scene_.objects.size(), 0);
     for (std::uint32_t o : setup_.objects) inCells[o] = 1;
     for (const auto& objects : setup_.lightObjects) {
-      lightVolumes_.emplace_back(scene_, shading_, objects);
       stats_.lightObjects += objects.size();
       for (std::uint32_t o : objects) stats_.extraLightObjects += inCells[o] ? 0 : 1;
     }
-    for (const auto& objects : setup_.rearLightObjects)
-      rearLightVolumes_.emplace_back(scene_, shading_, objects);
   }
+  // What only the construction needed: the light lists (the BVH holds their objects) and the eye boxes.
+  setup_.lightObjects = {};
+  setup_.rearLightObjects = {};
+  setup_.database.eyeBoxes = {};
 }
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
@@ -190,7 +190,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   double attenuation = m.attenuation;
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
-    return regionBvh_ ? visitInterval(ray, ta, tb, *regionBvh_, hit, attenuation)
+    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *databaseBvh_, hit, attenuation)
                       : visitInterval(ray, ta, tb, objects, hit, attenuation);
   };
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
@@ -228,23 +228,20 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
 }
 
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of
-// its light's volume: traced here, in one piece, exactly as the reference traces it; no message.
+// its light's volume, all held here: traced in one piece, exactly as the reference traces it; no message.
 template <class Real>
 bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& transmission) {
-  if (lightVolumes_.empty() || m.tEnter != m.ray.ray.tMin || m.attenuation != 1) return false;
+  if (setup_.lightRays == LightRayMode::Messages || m.tEnter != m.ray.ray.tMin || m.attenuation != 1)
+    return false;
   const core::Vec3 origin = eyeFramePoint(context_.view, m.ray.ray.origin);
   auto inside = [&](const core::Box& box) {
     for (int a = 0; a < 3; ++a)
       if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
     return true;
   };
-  const core::BasicBvh<Real>* volume = inside(setup_.lightSources.eyeBox) ? &lightVolumes_[m.ray.light]
-                                       : inside(setup_.rearLightSources.eyeBox)
-                                           ? &rearLightVolumes_[m.ray.light]
-                                           : nullptr;
-  if (volume == nullptr) return false;
+  if (!inside(setup_.lightSources.eyeBox) && !inside(setup_.rearLightSources.eyeBox)) return false;
   ++stats_.lightRaysTracedLocally;
-  transmission = core::shadowTransmission(shading_, *volume, m.ray, stats_.processed, shadowScratch_);
+  transmission = core::shadowTransmission(shading_, *databaseBvh_, m.ray, stats_.processed, shadowScratch_);
   return true;
 }
 

@@ -51,6 +51,7 @@ struct NodeStats {
   SampleRect area;
   std::size_t objects = 0, rearObjects = 0, cells = 0;
   bool bvh = false;                   // the region's objects in a BVH rather than the paper's cells
+  std::size_t heldObjects = 0;        // the region database: region, rear and light-volume objects
   std::size_t lightObjects = 0;       // objects held for light rays (summed over lights)
   std::size_t extraLightObjects = 0;  // of those, objects not already in the region's cells
   std::uint64_t lightRaysTracedLocally = 0;
@@ -119,9 +120,10 @@ class LogicalProcessor {
   SampleRect area_;
   CellStructure structure_;  // Paper or Bvh
   RegionCells cells_;
-  std::optional<core::BasicBvh<Real>> regionBvh_;  // the region's objects, with CellStructure::Bvh
-  std::vector<core::BasicBvh<Real>> lightVolumes_;  // per light, when light rays are traced where they start
-  std::vector<core::BasicBvh<Real>> rearLightVolumes_;  // per light, for light rays starting behind the eye
+  // Every object the processor holds, in one BVH: the region's with CellStructure::Bvh, and the light
+  // volumes' when light rays are traced where they start. Holding more than a query needs costs it nothing
+  // but box tests: an object outside the region (or off a light ray's segment) never has a hit in it.
+  std::optional<core::BasicBvh<Real>> databaseBvh_;
   long long nextPrimary_ = 0;
   std::atomic<long long> primariesShot_{0};
   std::vector<Message> local_;                   // rays spawned here, still to evaluate here

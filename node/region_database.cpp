@@ -1,6 +1,6 @@
 #include "node/region_database.h"
 
-#include <algorithm>
+#include <cstdint>
 
 namespace raycube::node {
 namespace {
@@ -21,23 +21,21 @@ core::Scene withoutObjects(const core::Scene& scene) {
 
 RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
                                     std::span<std::vector<std::uint32_t>* const> lists) {
-  RegionDatabase db;
+  constexpr std::uint32_t kNotHeld = UINT32_MAX;
+  std::vector<std::uint32_t> localOf(scene.objects.size(), kNotHeld);
   for (const std::vector<std::uint32_t>* list : lists)
-    db.globalIds.insert(db.globalIds.end(), list->begin(), list->end());
-  std::sort(db.globalIds.begin(), db.globalIds.end());
-  db.globalIds.erase(std::unique(db.globalIds.begin(), db.globalIds.end()), db.globalIds.end());
+    for (std::uint32_t g : *list) localOf[g] = 0;
+  RegionDatabase db;
   db.scene = withoutObjects(scene);
-  db.scene.objects.reserve(db.globalIds.size());
-  db.eyeBoxes.reserve(db.globalIds.size());
-  for (std::uint32_t g : db.globalIds) {
+  for (std::uint32_t g = 0; g < localOf.size(); ++g) {
+    if (localOf[g] == kNotHeld) continue;
+    localOf[g] = std::uint32_t(db.globalIds.size());
+    db.globalIds.push_back(g);
     db.scene.objects.push_back(scene.objects[g]);
     db.eyeBoxes.push_back(eyeBoxes[g]);
   }
-  auto localOf = [&](std::uint32_t g) {
-    return std::uint32_t(std::lower_bound(db.globalIds.begin(), db.globalIds.end(), g) - db.globalIds.begin());
-  };
   for (std::vector<std::uint32_t>* list : lists)
-    for (std::uint32_t& o : *list) o = localOf(o);
+    for (std::uint32_t& o : *list) o = localOf[o];
   return db;
 }
 

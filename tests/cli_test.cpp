@@ -172,6 +172,30 @@ TEST_F(Cli, StatsAreParseableJsonWithRayCounts) {
   EXPECT_GT(stats.at("rays").at("shadow").get<int>(), 0);
 }
 
+// --cells picks how regions hold their objects; the image does not depend on it, the stats say which.
+TEST_F(Cli, CellStructuresRenderTheSameImage) {
+  expectOneLineError("render --balls 1 --cells bogus -q -o x.png", {"--cells", "bogus"});
+  for (const char* cells : {"paper", "bvh", "auto"}) {
+    const Outcome r = run(std::string("render --balls 3 --size 24x24 --mode machine --procs 2x2 -q --cells ") +
+                          cells + " -o " + cells + ".exr --stats " + cells + ".json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(slurp(dir_ / (std::string(cells) + ".json")));
+    EXPECT_EQ(stats.at("machine").at("cells").get<std::string>(), cells);
+    std::size_t withBvh = 0, processors = 0;
+    for (const nlohmann::json& p : stats.at("machine").at("processors")) {
+      withBvh += p.at("bvh").get<bool>() ? 1 : 0;
+      ++processors;
+    }
+    const std::string name = cells;
+    if (name == "paper") EXPECT_EQ(withBvh, 0u);
+    if (name == "bvh") EXPECT_EQ(withBvh, processors);
+    if (name == "auto") EXPECT_GT(withBvh, 0u) << "balls 3's 821 objects make some region dense";
+  }
+  for (const char* cells : {"bvh", "auto"})
+    EXPECT_TRUE(core::bitIdentical(core::readExr(dir_ / "paper.exr"), core::readExr(dir_ / (std::string(cells) + ".exr"))))
+        << cells;
+}
+
 // Every cell of the report's per-processor table, as (processor row, JSON pointer, text).
 struct TableCell {
   std::size_t row;

@@ -1,0 +1,62 @@
+#pragma once
+// The host's spatial index for pruning (3.2 step 1, 3.7.2): a binary tree of boxes over the objects, so that
+// finding the objects a region or a light volume may hold costs about (objects found) x log(objects), not a
+// test of every object. The test must be monotone (a box that fails it holds no box that passes it), as
+// every test of eye_box.h and light_volume.h is: a subtree whose box fails is skipped whole.
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "core/box.h"
+
+namespace raycube::node {
+
+class BoxTree {
+ public:
+  explicit BoxTree(const std::vector<core::Box>& boxes);
+
+  // Indices of the boxes passing mayHold(box), whose every enclosing node also passes, in ascending order.
+  // holdsAll(box), when it can tell, says that every box inside `box` passes: the subtree is taken whole.
+  template <class MayHold, class HoldsAll>
+  std::vector<std::uint32_t> query(MayHold&& mayHold, HoldsAll&& holdsAll) const;
+  template <class MayHold>
+  std::vector<std::uint32_t> query(MayHold&& mayHold) const {
+    return query(mayHold, [](const core::Box&) { return false; });
+  }
+
+ private:
+  struct Node {
+    core::Box box;
+    std::uint32_t begin = 0, end = 0;  // the range of order_ its subtree holds
+    std::uint32_t children = 0;        // inner: left child here, right child next; 0: a leaf
+  };
+  void build(const std::vector<core::Box>& boxes, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> order_;  // object indices, leaves point into it
+  std::vector<core::Box> leafBoxes_;  // per entry of order_
+};
+
+template <class MayHold, class HoldsAll>
+std::vector<std::uint32_t> BoxTree::query(MayHold&& mayHold, HoldsAll&& holdsAll) const {
+  std::vector<std::uint32_t> found;
+  if (nodes_.empty()) return found;
+  std::vector<std::uint32_t> stack{0};
+  while (!stack.empty()) {
+    const Node& node = nodes_[stack.back()];
+    stack.pop_back();
+    if (!mayHold(node.box)) continue;
+    if (holdsAll(node.box)) {
+      found.insert(found.end(), order_.begin() + node.begin, order_.begin() + node.end);
+    } else if (node.children != 0) {
+      stack.push_back(node.children);
+      stack.push_back(node.children + 1);
+    } else {
+      for (std::uint32_t i = node.begin; i < node.end; ++i)
+        if (mayHold(leafBoxes_[i])) found.push_back(order_[i]);
+    }
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+}  // namespace raycube::node
