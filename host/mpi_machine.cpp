@@ -101,12 +101,13 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
   settings.rayBatch = rayBatch_;
   settings.jitterSeed = jitterSeed_;
   settings.rankOf = ranksOfProcessors(processors, ranks);
-  // 3.2 step 2: each rank receives the context and the setups of its own processors.
+  // 3.2 step 2: each rank receives the context and the setups of its own processors; the host keeps no
+  // copy of a setup once it has left.
   std::uint64_t jobBytes = 0;
   for (int r = 1; r < ranks; ++r) {
     std::vector<node::NodeSetup> mine;
     for (int p = 0; p < processors; ++p)
-      if (settings.rankOf[p] == r) mine.push_back(setups[p]);
+      if (settings.rankOf[p] == r) mine.push_back(std::move(setups[p]));
     std::vector<char> job = encodeJob(settings, context, mine);
     jobBytes += job.size();
     link_.post(r, Packet::Job, std::move(job));
@@ -119,7 +120,7 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
   link_.flushSends();
 
   MachineRun run;
-  run.processors.resize(setups.size());
+  run.processors.resize(std::size_t(processors));
   DistributedRun distributed;
   distributed.rayBatch = rayBatch_;
   const queues::MpiTraffic& after = link_.traffic();
