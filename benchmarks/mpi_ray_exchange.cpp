@@ -29,12 +29,13 @@ struct Config {
   std::size_t rayBatch;
 };
 
-// Every rank waits for the others while rank 0 keeps taking (and dropping) what arrives.
+// Every rank waits for the others while rank 0 keeps taking (and dropping) what arrives; the other ranks
+// take nothing here: a ray from a rank that left the barrier first belongs to the next exchange.
 void barrier(queues::MpiLink& link) {
   MPI_Request request;
   MPI_Ibarrier(MPI_COMM_WORLD, &request);
   for (int done = 0; !done;) {
-    const std::size_t n = link.poll([](int, queues::Packet, std::span<const char>) {});
+    const std::size_t n = link.rank() == 0 ? link.poll([](int, queues::Packet, std::span<const char>) {}) : 0;
     link.progressSends();
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     if (n == 0 && !done) std::this_thread::sleep_for(std::chrono::microseconds(200));  // leave the cores to the exchange
