@@ -29,6 +29,8 @@
 #include "host/machine.h"
 #include "host/machine_checks.h"
 #include "host/machine_report.h"
+#include "host/mpi_session.h"
+#include "host/distributed_report.h"
 #include "host/progress.h"
 #include "host/run_report.h"
 #include "host/sequential_renderers.h"
@@ -93,6 +95,7 @@ struct RenderCommand {
   std::string costsPath;
   std::string tracePath;
   std::string timelinePath;
+  std::string transport = "threads";
   MachineSettings machine;
 };
 
@@ -116,6 +119,7 @@ MachineSettings machineSettingsOf(const RenderCommand& cmd) {
   machine.balance = kBalances.at(cmd.balance);
   machine.loadMetric = kLoadMetrics.at(cmd.loadMetric);
   machine.emulate = emulatedPlatform(cmd);
+  machine.mpi = cmd.transport == "mpi";
   return machine;
 }
 
@@ -266,7 +270,8 @@ RunReport renderRunReport(const RenderCommand& cmd, const core::Scene& scene, co
   run.title = fmt::format("raycube render: {}", scene.name);
   run.settings = settingsOf(cmd, scene, result);
   run.summary = summaryText(scene, result) + (report ? machineTable(*report) : "") +
-                (report && report->simulated ? simulatedTable(*report) : "");
+                (report && report->simulated ? simulatedTable(*report) : "") +
+                (report && report->distributed ? distributedTable(*report) : "");
   run.imagePng = pngBytes(result.image);
   if (!report) return run;
   addChartSection(run, loadOverlay(result.image, *report, caption));
@@ -320,6 +325,7 @@ std::vector<std::string> writeExtras(const RenderCommand& cmd, const core::Scene
   nlohmann::json json = statsJson(scene, result);
   if (report) json["machine"] = machineJson(*report);
   if (report && report->simulated) json["simulated"] = simulatedJson(*report);
+  if (report && report->distributed) json["mpi"] = distributedJson(*report);
   if (!cmd.statsPath.empty()) writeJson(json, cmd.statsPath);
   if (!cmd.reportPath.empty()) {
     writeReport(renderRunReport(cmd, scene, result, report ? &*report : nullptr, json, caption),
@@ -336,6 +342,12 @@ int runRender(const RenderCommand& cmd) {
   if (!machineMode && !cmd.loadChartPath.empty())
     throw std::invalid_argument("--load-chart needs --mode machine");
   if (!cmd.procs.empty()) parsePair(cmd.procs, "--procs", "RxC", kMaxProcessorsPerSide);
+  if (cmd.transport == "mpi") {
+    if (!machineMode) throw std::invalid_argument("--transport mpi needs --mode machine");
+    if (!cmd.emulate.empty() || !cmd.platformPath.empty())
+      throw std::invalid_argument("--transport mpi runs on real ranks: it excludes --emulate and --platform");
+    if (hostMpiLink() == nullptr) throw std::invalid_argument("--transport mpi needs mpirun -np N (N >= 2)");
+  }
   requireWritable(cmd.output, "--output", {".exr", ".png"});
   requireWritable(cmd.statsPath, "--stats", {});
   requireWritable(cmd.overlayPath, "--overlay", {".png", ".svg"});
@@ -364,6 +376,7 @@ int runRender(const RenderCommand& cmd) {
   std::cout << summaryText(*scene, *result);
   if (report) std::cout << machineTable(*report);
   if (report && report->simulated) std::cout << simulatedTable(*report);
+  if (report && report->distributed) std::cout << distributedTable(*report);
   return result->counters.nonFinite > 0 ? 3 : 0;
 }
 
@@ -429,6 +442,14 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
       ->add_option("--emulate", cmd.emulate,
                    "Run the machine on SimGrid in simulated time: ipsc1 (the paper's iPSC/1) | cluster")
       ->check(CLI::IsMember({"ipsc1", "cluster"}));
+  render
+      ->add_option("--transport", cmd.transport,
+                   "threads (shared-memory FIFOs) | mpi (under mpirun -np N: rank 0 the host, ranks 1..N-1 "
+                   "the processors; README, The machine over MPI)")
+      ->check(CLI::IsMember({"threads", "mpi"}));
+  render
+      ->add_option("--ray-batch", cmd.machine.rayBatch, "MPI: rays per message to one rank, at most")
+      ->check(CLI::Range(std::size_t(1), std::size_t(4096)));
   render->add_option("--platform", cmd.platformPath,
                      "A SimGrid platform XML to emulate (hosts node-0 ... and manager; see README)");
   render->add_option("--costs", cmd.costsPath, "Cost table: 'name value' lines (README, Emulated machine time)");

@@ -208,6 +208,7 @@ void reportRun(MachineRun run, const std::vector<double>& estimatedLoad, const L
   out.estimatedLoad = estimatedLoad;
   out.subsampledRays = load.raysTraced;
   out.simulated = std::move(run.simulated);
+  out.distributed = std::move(run.distributed);
   for (const ProcessorReport& pr : processors) {
     result.counters += pr.node.processed;
     out.tokenPasses += pr.node.tokenVisits;

@@ -36,6 +36,8 @@ struct MachineSettings {
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
   unsigned jitterSeed = 0;  // tests: > 0 injects random delays around every transport operation
   std::optional<EmulatedPlatform> emulate;  // set: run on SimGrid in that machine's simulated time
+  bool mpi = false;         // run the processors on the other ranks of MPI_COMM_WORLD (host/mpi_machine.h)
+  std::size_t rayBatch = 16;  // MPI: rays per message to one rank, at most
 };
 
 struct ProcessorReport {
@@ -69,6 +71,21 @@ struct SimulatedRun {
   std::vector<StateInterval> timeline;
 };
 
+// A run over MPI (the MPI engine): what each rank held and what crossed between ranks.
+struct RankReport {
+  int rank = 0;
+  int processors = 0;            // logical processors it ran (the host, rank 0, runs none)
+  std::uint64_t objects = 0;     // objects its processors held, each its own copy (RegionDatabase)
+  std::uint64_t jobBytes = 0;    // the setups and context it received (rank 0: sent to all)
+  std::uint64_t peakRssBytes = 0;  // its process's peak resident memory (getrusage)
+  std::uint64_t messagesSent = 0, bytesSent = 0, messagesReceived = 0, bytesReceived = 0;  // MPI
+  std::uint64_t rayMessages = 0, raysSent = 0;  // MPI messages carrying rays, and the rays in them
+};
+struct DistributedRun {
+  std::size_t rayBatch = 0;
+  std::vector<RankReport> ranks;  // rank 0 first
+};
+
 struct MachineReport {
   MachineSettings settings;
   // Figure 15: per processor, the load estimated from the sub-sampled rays (scaled to the image), in the
@@ -86,6 +103,7 @@ struct MachineReport {
   std::uint64_t contributionsAccumulated = 0;
   std::uint32_t tokenRounds = 0;  // started by processor 0
   std::optional<SimulatedRun> simulated;
+  std::optional<DistributedRun> distributed;
   std::uint64_t tokenPasses = 0;  // token visits over all processors
 };
 

@@ -25,6 +25,7 @@ struct EngineHooks {
 struct MachineRun {
   std::vector<ProcessorReport> processors;
   std::optional<SimulatedRun> simulated;  // engines with a clock of their own
+  std::optional<DistributedRun> distributed;  // engines spread over processes
 };
 
 template <class Real>

@@ -1,36 +1,14 @@
 #include "host/threaded_machine.h"
 
-#include <chrono>
 #include <latch>
 #include <thread>
 
+#include "host/node_thread.h"
 #include "node/scheduling.h"
 #include "queues/jitter_transport.h"
 #include "queues/shared_memory_interconnect.h"
 
 namespace raycube::host {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// A processor's thread: step the node; when it has nothing to do, sleep until something arrives, and
-// count the time asleep as blocked (rays held for a full neighbour) or idle.
-template <class Real>
-void drive(node::LogicalProcessor<Real>& node, queues::SharedMemoryInterconnect<Real>& interconnect, int id,
-           ProcessorReport& times) {
-  for (;;) {
-    const node::Step step = node.step();
-    if (step == node::Step::Terminated) return;
-    if (step == node::Step::Worked) continue;
-    const auto start = Clock::now();
-    const bool blocked = node.blocked();
-    interconnect.waitFor(id, [&] { return node.readyToStep(); });
-    (blocked ? times.blockedSeconds : times.idleSeconds) +=
-        std::chrono::duration<double>(Clock::now() - start).count();
-  }
-}
-
-}  // namespace
 
 template <class Real>
 MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
@@ -59,7 +37,7 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
       nodes[id] = std::make_unique<node::LogicalProcessor<Real>>(context, std::move(setups[id]), *transports[id]);
       subdivided.count_down();
       synthesis.wait();
-      drive(*nodes[id], interconnect, id, reports[id]);
+      driveNodeThread(*nodes[id], interconnect, id, reports[id]);
     });
   subdivided.wait();
   if (hooks.synthesisStarts) hooks.synthesisStarts();
@@ -83,7 +61,9 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
     reports[id].node = nodes[id]->stats();
     for (int f = 0; f < node::kFaces; ++f) reports[id].outgoing[f] = interconnect.outgoingStats(id, node::Face(f));
   }
-  return MachineRun{std::move(reports), std::nullopt};
+  MachineRun run;
+  run.processors = std::move(reports);
+  return run;
 }
 
 template class ThreadedMachine<float>;

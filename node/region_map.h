@@ -24,6 +24,7 @@ class RegionMap {
                         const ScreenLines& lines);
 
   int processors() const { return int(areas_.size()); }
+  int gridColumns() const { return gridColumns_; }  // > 0: built as a uniform grid of that many columns
   const ScreenLines& lines() const { return lines_; }
   const SampleRect& areaOf(int id) const { return areas_[id]; }
   int ownerOfSample(int sx, int sy) const { return owner_[std::size_t(sy) * samplesX_ + sx]; }

@@ -1,0 +1,208 @@
+#include "host/machine_wire.h"
+
+#include <variant>
+
+#include "core/overloaded.h"
+
+namespace raycube::host {
+namespace {
+
+static_assert(std::is_trivially_copyable_v<core::View>, "the view travels as bytes");
+static_assert(std::is_trivially_copyable_v<ProcessorReport>);
+static_assert(std::is_trivially_copyable_v<RankReport>);
+
+// ---- A database (3.2 step 1): objects, lights, materials and camera (a region's, see RegionDatabase).
+
+void writeObject(WireWriter& out, const core::Object& object) {
+  out.value(std::uint8_t(object.shape.index()));
+  std::visit(core::Overloaded{[&](const core::Sphere& s) { out.value(s); },
+                              [&](const core::Cone& c) { out.value(c); },
+                              [&](const core::Polygon& p) { out.vector(p.vertices); },
+                              [&](const core::Patch& p) {
+                                out.vector(p.vertices);
+                                out.vector(p.normals);
+                              }},
+             object.shape);
+  out.value(object.material);
+  out.value(object.insideVisible);
+  out.value(object.line);
+}
+
+core::Object readObject(WireReader& in) {
+  core::Object object;
+  switch (in.value<std::uint8_t>()) {
+    case 0:
+      object.shape = in.value<core::Sphere>();
+      break;
+    case 1:
+      object.shape = in.value<core::Cone>();
+      break;
+    case 2:
+      object.shape = core::Polygon{in.vector<core::Vec3>()};
+      break;
+    case 3: {
+      core::Patch patch;
+      patch.vertices = in.vector<core::Vec3>();
+      patch.normals = in.vector<core::Vec3>();
+      object.shape = std::move(patch);
+      break;
+    }
+    default:
+      throw std::runtime_error("a message between ranks holds an unknown shape");
+  }
+  object.material = in.value<std::uint32_t>();
+  object.insideVisible = in.value<bool>();
+  object.line = in.value<int>();
+  return object;
+}
+
+void writeScene(WireWriter& out, const core::Scene& scene) {
+  out.string(scene.name);
+  out.string(scene.source);
+  out.value(scene.camera);
+  out.value(scene.background);
+  out.vector(scene.lights);
+  out.vector(scene.materials);
+  out.value(std::uint64_t(scene.objects.size()));
+  for (const core::Object& o : scene.objects) writeObject(out, o);
+}
+
+core::Scene readScene(WireReader& in) {
+  core::Scene scene;
+  scene.name = in.string();
+  scene.source = in.string();
+  scene.camera = in.value<core::Camera>();
+  scene.background = in.value<core::Color>();
+  scene.lights = in.vector<core::Light>();
+  scene.materials = in.vector<core::Material>();
+  scene.objects.resize(in.value<std::uint64_t>());
+  for (core::Object& o : scene.objects) o = readObject(in);
+  return scene;
+}
+
+// ---- The context every processor shares: the partition travels as its areas, the lines as the view.
+// The objects travel in each processor's setup: its region database, not the whole scene.
+
+void writeContext(WireWriter& out, const node::MachineContext& context) {
+  out.value(context.view);
+  out.value(context.shading);
+  std::vector<node::SampleRect> areas;
+  for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
+  out.vector(areas);
+  out.value(context.regions.gridColumns());
+}
+
+node::MachineContext readContext(WireReader& in) {
+  const auto view = in.value<core::View>();
+  const auto shading = in.value<core::ShadingOptions>();
+  auto areas = in.vector<node::SampleRect>();
+  const int gridColumns = in.value<int>();
+  return node::MachineContext{view, shading,
+                              node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns)};
+}
+
+// ---- A processor's setup (3.2 step 2, 3.7.2).
+
+void writeLightSources(WireWriter& out, const node::LightSources& sources) {
+  out.value(sources.eyeBox);
+  out.vector(sources.corners);
+}
+
+node::LightSources readLightSources(WireReader& in) {
+  node::LightSources sources;
+  sources.eyeBox = in.value<core::Box>();
+  sources.corners = in.vector<core::Vec3>();
+  return sources;
+}
+
+void writeObjectLists(WireWriter& out, const std::vector<std::vector<std::uint32_t>>& lists) {
+  out.value(std::uint64_t(lists.size()));
+  for (const auto& list : lists) out.vector(list);
+}
+
+std::vector<std::vector<std::uint32_t>> readObjectLists(WireReader& in) {
+  std::vector<std::vector<std::uint32_t>> lists(in.value<std::uint64_t>());
+  for (auto& list : lists) list = in.vector<std::uint32_t>();
+  return lists;
+}
+
+void writeSetup(WireWriter& out, const node::NodeSetup& setup) {
+  out.value(setup.id);
+  out.value(setup.cells);
+  out.value(setup.cellLevel);
+  writeScene(out, setup.database.scene);
+  out.vector(setup.database.globalIds);
+  out.vector(setup.database.eyeBoxes);
+  out.vector(setup.objects);
+  out.vector(setup.rearObjects);
+  out.value(setup.lightRays);
+  writeLightSources(out, setup.lightSources);
+  writeObjectLists(out, setup.lightObjects);
+  writeLightSources(out, setup.rearLightSources);
+  writeObjectLists(out, setup.rearLightObjects);
+}
+
+node::NodeSetup readSetup(WireReader& in) {
+  node::NodeSetup setup;
+  setup.id = in.value<int>();
+  setup.cells = in.value<node::CellStructure>();
+  setup.cellLevel = in.value<int>();
+  setup.database.scene = readScene(in);
+  setup.database.globalIds = in.vector<std::uint32_t>();
+  setup.database.eyeBoxes = in.vector<node::EyeBox>();
+  setup.objects = in.vector<std::uint32_t>();
+  setup.rearObjects = in.vector<std::uint32_t>();
+  setup.lightRays = in.value<node::LightRayMode>();
+  setup.lightSources = readLightSources(in);
+  setup.lightObjects = readObjectLists(in);
+  setup.rearLightSources = readLightSources(in);
+  setup.rearLightObjects = readObjectLists(in);
+  return setup;
+}
+
+}  // namespace
+
+std::vector<char> encodeJob(const JobSettings& settings, const node::MachineContext& context,
+                            std::span<const node::NodeSetup> setups) {
+  WireWriter out;
+  out.value(settings.precision);
+  out.value(settings.queueCapacity);
+  out.value(settings.rayBatch);
+  out.value(settings.jitterSeed);
+  out.vector(settings.rankOf);
+  writeContext(out, context);
+  out.value(std::uint64_t(setups.size()));
+  for (const node::NodeSetup& s : setups) writeSetup(out, s);
+  return out.take();
+}
+
+MachineJob decodeJob(std::span<const char> bytes) {
+  WireReader in(bytes);
+  JobSettings settings;
+  settings.precision = in.value<core::Precision>();
+  settings.queueCapacity = in.value<std::uint64_t>();
+  settings.rayBatch = in.value<std::uint64_t>();
+  settings.jitterSeed = in.value<unsigned>();
+  settings.rankOf = in.vector<int>();
+  MachineJob job{std::move(settings), readContext(in), {}};
+  job.setups.resize(in.value<std::uint64_t>());
+  for (node::NodeSetup& s : job.setups) s = readSetup(in);
+  return job;
+}
+
+std::vector<char> encodeResults(const RankResults& results) {
+  WireWriter out;
+  out.value(results.rank);
+  out.vector(results.processors);
+  return out.take();
+}
+
+RankResults decodeResults(std::span<const char> bytes) {
+  WireReader in(bytes);
+  RankResults results;
+  results.rank = in.value<RankReport>();
+  results.processors = in.vector<ProcessorReport>();
+  return results;
+}
+
+}  // namespace raycube::host

@@ -1,0 +1,27 @@
+#pragma once
+// A processor's thread, on any interconnect whose processors wait on doorbells (shared memory, MPI): step
+// the node; when it has nothing to do, sleep until something arrives, and count the time asleep as blocked
+// (rays held for a full neighbour) or idle.
+#include <chrono>
+
+#include "host/machine.h"
+#include "node/logical_processor.h"
+
+namespace raycube::host {
+
+template <class Real, class Interconnect>
+void driveNodeThread(node::LogicalProcessor<Real>& node, Interconnect& interconnect, int id, ProcessorReport& times) {
+  using Clock = std::chrono::steady_clock;
+  for (;;) {
+    const node::Step step = node.step();
+    if (step == node::Step::Terminated) return;
+    if (step == node::Step::Worked) continue;
+    const auto start = Clock::now();
+    const bool blocked = node.blocked();
+    interconnect.waitFor(id, [&] { return node.readyToStep(); });
+    (blocked ? times.blockedSeconds : times.idleSeconds) +=
+        std::chrono::duration<double>(Clock::now() - start).count();
+  }
+}
+
+}  // namespace raycube::host

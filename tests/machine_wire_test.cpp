@@ -1,0 +1,161 @@
+// What travels between the host and a rank (host/machine_wire.h) comes back exactly as it left: the
+// context, every field of a setup with its region database (every kind of shape), and the reports; a
+// message cut short is an error, never a read past its end.
+#include "host/machine_wire.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "core/balls.h"
+#include "node/region_database.h"
+
+namespace raycube::host {
+namespace {
+
+// Balls 1 (spheres and a polygon) with a cone and a patch added.
+core::Scene everyShape() {
+  core::Scene scene = core::makeBalls(1);
+  scene.objects.push_back(core::Object{core::Cone{{0, 0, 0}, 0.5, {0, 1, 0}, 0.25}, 0, false, 7});
+  scene.objects.push_back(core::Object{
+      core::Patch{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 0, 1}, {0.6, 0, 0.8}}}, 0, true, 9});
+  return scene;
+}
+
+node::MachineContext contextOf(const core::Scene& scene) {
+  const core::View view(scene.camera, 20, 12, core::Sampling::Corners, 2);
+  return node::MachineContext{view, core::ShadingOptions{4, 0.01, 2},
+                              node::RegionMap::grid({0, 7, 21}, {0, 5, 13}, node::ScreenLines(view))};
+}
+
+node::NodeSetup setupOf(const core::Scene& scene, const node::MachineContext& context) {
+  node::NodeSetup s;
+  s.id = 3;
+  s.cells = node::CellStructure::Bvh;
+  s.cellLevel = 1;
+  std::vector<node::EyeBox> boxes;
+  for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, context.view, 100));
+  s.objects = {1, 4, std::uint32_t(scene.objects.size() - 2), std::uint32_t(scene.objects.size() - 1)};
+  s.rearObjects = {0};
+  s.lightRays = node::LightRayMode::Pyramid;
+  s.lightSources.eyeBox.extend(core::Vec3(1, 2, 3));
+  s.lightSources.corners = {core::Vec3(4, 5, 6)};
+  s.lightObjects = {{2, 3}, {}, {5}};
+  s.rearLightObjects = {{0}, {0}, {}};
+  std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects, &s.lightObjects[0], &s.lightObjects[2],
+                                         &s.rearLightObjects[0], &s.rearLightObjects[1]};
+  s.database = node::gatherRegionDatabase(scene, boxes, lists);
+  return s;
+}
+
+template <class T>
+bool sameBytes(const T& a, const T& b) {
+  return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+void expectSameObject(const core::Object& a, const core::Object& b) {
+  ASSERT_EQ(a.shape.index(), b.shape.index());
+  EXPECT_EQ(a.material, b.material);
+  EXPECT_EQ(a.insideVisible, b.insideVisible);
+  EXPECT_EQ(a.line, b.line);
+  if (const auto* s = std::get_if<core::Sphere>(&a.shape)) {
+    EXPECT_TRUE(sameBytes(*s, std::get<core::Sphere>(b.shape)));
+  }
+  if (const auto* c = std::get_if<core::Cone>(&a.shape)) {
+    EXPECT_TRUE(sameBytes(*c, std::get<core::Cone>(b.shape)));
+  }
+  if (const auto* p = std::get_if<core::Polygon>(&a.shape)) {
+    EXPECT_EQ(p->vertices, std::get<core::Polygon>(b.shape).vertices);
+  }
+  if (const auto* p = std::get_if<core::Patch>(&a.shape)) {
+    EXPECT_EQ(p->vertices, std::get<core::Patch>(b.shape).vertices);
+    EXPECT_EQ(p->normals, std::get<core::Patch>(b.shape).normals);
+  }
+}
+
+TEST(MachineWireTest, JobComesBackAsItLeft) {
+  const core::Scene scene = everyShape();
+  const node::MachineContext context = contextOf(scene);
+  const node::NodeSetup setup = setupOf(scene, context);
+  JobSettings settings;
+  settings.precision = core::Precision::Float;
+  settings.queueCapacity = 3;
+  settings.rayBatch = 5;
+  settings.jitterSeed = 11;
+  settings.rankOf = {1, 1, 2, 2};
+  const std::vector<char> bytes = encodeJob(settings, context, std::span(&setup, 1));
+  const MachineJob job = decodeJob(bytes);
+
+  EXPECT_EQ(job.settings.precision, core::Precision::Float);
+  EXPECT_EQ(job.settings.queueCapacity, 3u);
+  EXPECT_EQ(job.settings.rayBatch, 5u);
+  EXPECT_EQ(job.settings.jitterSeed, 11u);
+  EXPECT_EQ(job.settings.rankOf, settings.rankOf);
+  EXPECT_TRUE(sameBytes(job.context.view, context.view));
+  EXPECT_TRUE(sameBytes(job.context.shading, context.shading));
+  ASSERT_EQ(job.context.regions.processors(), 4);
+  EXPECT_EQ(job.context.regions.gridColumns(), context.regions.gridColumns());
+  for (int p = 0; p < 4; ++p) {
+    EXPECT_TRUE(sameBytes(job.context.regions.areaOf(p), context.regions.areaOf(p)));
+    EXPECT_EQ(job.context.regions.neighbours(p), context.regions.neighbours(p));
+  }
+  for (int axis = 0; axis < 2; ++axis)
+    for (int k = 0; k <= context.lines().samples(axis); ++k)
+      EXPECT_EQ(job.context.lines().at(axis, k), context.lines().at(axis, k));
+
+  ASSERT_EQ(job.setups.size(), 1u);
+  const node::NodeSetup& s = job.setups[0];
+  EXPECT_EQ(s.id, setup.id);
+  EXPECT_EQ(s.cells, setup.cells);
+  EXPECT_EQ(s.cellLevel, setup.cellLevel);
+  EXPECT_EQ(s.objects, setup.objects);
+  EXPECT_EQ(s.rearObjects, setup.rearObjects);
+  EXPECT_EQ(s.lightRays, setup.lightRays);
+  EXPECT_TRUE(sameBytes(s.lightSources.eyeBox, setup.lightSources.eyeBox));
+  EXPECT_EQ(s.lightSources.corners, setup.lightSources.corners);
+  EXPECT_EQ(s.lightObjects, setup.lightObjects);
+  EXPECT_EQ(s.rearLightObjects, setup.rearLightObjects);
+  EXPECT_EQ(s.database.globalIds, setup.database.globalIds);
+  ASSERT_EQ(s.database.eyeBoxes.size(), setup.database.eyeBoxes.size());
+  for (std::size_t k = 0; k < s.database.eyeBoxes.size(); ++k)
+    EXPECT_TRUE(sameBytes(s.database.eyeBoxes[k], setup.database.eyeBoxes[k]));
+  const core::Scene& held = s.database.scene;
+  EXPECT_EQ(held.name, scene.name);
+  EXPECT_TRUE(sameBytes(held.camera, scene.camera));
+  EXPECT_EQ(held.lights.size(), scene.lights.size());
+  EXPECT_EQ(held.materials.size(), scene.materials.size());
+  ASSERT_EQ(held.objects.size(), setup.database.scene.objects.size());
+  for (std::size_t k = 0; k < held.objects.size(); ++k) expectSameObject(held.objects[k], setup.database.scene.objects[k]);
+  // The cone and the patch are among the objects held (the last two of the scene).
+  EXPECT_EQ(held.objects.back().shape.index(), 3u);
+}
+
+TEST(MachineWireTest, ResultsComeBackAsTheyLeft) {
+  RankResults results;
+  results.rank.rank = 2;
+  results.rank.processors = 1;
+  results.rank.peakRssBytes = 123456;
+  ProcessorReport p;
+  p.node.id = 7;
+  p.node.sent = {1, 2, 3, 4};
+  p.idleSeconds = 0.5;
+  results.processors = {p};
+  const RankResults back = decodeResults(encodeResults(results));
+  EXPECT_TRUE(sameBytes(back.rank, results.rank));
+  ASSERT_EQ(back.processors.size(), 1u);
+  EXPECT_EQ(back.processors[0].node.id, 7);
+  EXPECT_EQ(back.processors[0].node.sent, p.node.sent);
+  EXPECT_EQ(back.processors[0].idleSeconds, 0.5);
+}
+
+TEST(MachineWireTest, MessageCutShortIsAnError) {
+  const core::Scene scene = everyShape();
+  const node::MachineContext context = contextOf(scene);
+  const node::NodeSetup setup = setupOf(scene, context);
+  const std::vector<char> bytes = encodeJob(JobSettings{.rankOf = {1, 1, 1, 1}}, context, std::span(&setup, 1));
+  for (std::size_t cut : {std::size_t(0), std::size_t(3), bytes.size() / 2, bytes.size() - 1})
+    EXPECT_THROW(decodeJob(std::span(bytes.data(), cut)), std::runtime_error) << "cut at " << cut;
+}
+
+}  // namespace
+}  // namespace raycube::host
