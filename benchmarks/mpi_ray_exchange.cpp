@@ -80,7 +80,7 @@ double exchange(queues::MpiLink& link, const node::RegionMap& regions, const Con
   }
   typename queues::MpiInterconnect<double>::ServeHooks hooks;
   hooks.stopped = [&] { return running.load() == 0; };
-  hooks.primariesShot = [] { return 0LL; };
+  hooks.progress = [] { return std::vector<queues::ProcessorProgress>{}; };
   if (link.rank() != 0) net.serve(hooks);
   for (std::thread& t : threads) t.join();
   barrier(link);

@@ -31,7 +31,8 @@ namespace {
 // The host's side of one render: what has come back from the ranks so far.
 class HostInbox {
  public:
-  HostInbox(int ranks, const EngineHooks& hooks) : hooks_(hooks), shot_(std::size_t(ranks), 0), results_(std::size_t(ranks)) {}
+  HostInbox(int ranks, int processors, const EngineHooks& hooks)
+      : hooks_(hooks), evaluated_(std::size_t(processors), 0), results_(std::size_t(ranks)) {}
 
   void onPacket(int from, Packet kind, std::span<const char> bytes) {
     switch (kind) {
@@ -42,7 +43,9 @@ class HostInbox {
         queues::forEachEntry<core::Contribution>(bytes, [&](const core::Contribution& c) { hooks_.host->add(c); });
         break;
       case Packet::Progress:
-        shot_[from] = queues::packetValue<long long>(bytes);
+        queues::forEachEntry<queues::ProcessorProgress>(bytes, [&](const queues::ProcessorProgress& p) {
+          evaluated_.at(p.processor) = p.segmentsEvaluated;
+        });
         progressed_ = true;
         break;
       case Packet::Results:
@@ -55,9 +58,7 @@ class HostInbox {
   }
   void reportProgress() {
     if (!progressed_ || !hooks_.progress) return;
-    long long shot = 0;
-    for (long long s : shot_) shot += s;
-    hooks_.progress(shot);
+    hooks_.progress(evaluated_);
     progressed_ = false;
   }
   int ready() const { return ready_; }
@@ -68,7 +69,7 @@ class HostInbox {
   const EngineHooks& hooks_;
   int ready_ = 0, finished_ = 0;
   bool progressed_ = false;
-  std::vector<long long> shot_;
+  std::vector<std::uint64_t> evaluated_;  // per processor: ray segments (the progress line)
   std::vector<std::optional<RankResults>> results_;
 };
 
@@ -112,7 +113,7 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
     jobBytes += job.size();
     link_.post(r, Packet::Job, std::move(job));
   }
-  HostInbox inbox(ranks, hooks);
+  HostInbox inbox(ranks, processors, hooks);
   pumpUntil(link_, inbox, [&] { return inbox.ready() == ranks - 1; });
   if (hooks.synthesisStarts) hooks.synthesisStarts();
   for (int r = 1; r < ranks; ++r) link_.post(r, Packet::Start, {});

@@ -95,10 +95,11 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
     link.post(0, Packet::Ready, {});
     typename queues::MpiInterconnect<Real>::ServeHooks hooks;
     hooks.stopped = [&] { return running.load() == 0; };
-    hooks.primariesShot = [&] {
-      long long shot = 0;
-      for (const auto& n : nodes) shot += n ? n->primariesShot() : 0;
-      return shot;
+    hooks.progress = [&] {
+      std::vector<queues::ProcessorProgress> progress;
+      for (std::size_t k = 0; k < local; ++k)
+        if (nodes[k]) progress.push_back({std::uint32_t(ids[k]), nodes[k]->segmentsEvaluated()});
+      return progress;
     };
     hooks.other = [&](int from, Packet kind, std::span<const char>) {
       if (from == 0 && kind == Packet::Start) return synthesis.count_down();

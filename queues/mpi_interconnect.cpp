@@ -42,6 +42,12 @@ constexpr int kYieldsIdle = 16, kYieldsInFlight = 256;
 constexpr auto kProgressPeriod = std::chrono::milliseconds(100);
 constexpr std::size_t kContributionsPerPacket = 4096;
 
+bool sameProgress(const std::vector<ProcessorProgress>& a, const std::vector<ProcessorProgress>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const auto& x, const auto& y) {
+    return x.processor == y.processor && x.segmentsEvaluated == y.segmentsEvaluated;
+  });
+}
+
 }  // namespace
 
 template <class Real>
@@ -365,7 +371,7 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
   };
   std::vector<char> grew(std::size_t(link_.size()));
   auto nextProgress = Clock::now() + kProgressPeriod;
-  long long reportedShot = -1;
+  std::vector<ProcessorProgress> reported;
   int idlePasses = 0;
   auto lastWork = Clock::now();
   bool described = false;
@@ -390,9 +396,10 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
     if (terminated() && hooks.stopped()) break;
     if (Clock::now() >= nextProgress) {
       nextProgress = Clock::now() + kProgressPeriod;
-      if (const long long shot = hooks.primariesShot(); shot != reportedShot) {
-        link_.postValue(0, Packet::Progress, shot);
-        reportedShot = shot;
+      if (std::vector<ProcessorProgress> now = hooks.progress(); !sameProgress(now, reported)) {
+        const char* bytes = reinterpret_cast<const char*>(now.data());
+        link_.post(0, Packet::Progress, std::vector<char>(bytes, bytes + now.size() * sizeof now[0]));
+        reported = std::move(now);
       }
     }
     if (worked) {

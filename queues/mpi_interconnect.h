@@ -61,7 +61,7 @@ class MpiInterconnect {
 
   struct ServeHooks {
     std::function<bool()> stopped;            // every processor of this rank has returned
-    std::function<long long()> primariesShot;  // by this rank's processors, for the host's progress
+    std::function<std::vector<ProcessorProgress>()> progress;  // this rank's processors, for the host
     MpiLink::OnPacket other;                  // packets that are not the interconnect's (Start, Quit)
     std::function<void()> check;              // every pass: throws if a processor's thread has failed
   };

@@ -23,7 +23,7 @@ enum class Packet : std::uint8_t {
   Token,          // rank -> rank: Safra's token for a processor
   Terminate,      // rank -> rank: processor 0 has proved termination
   Contributions,  // rank -> host: a block of contributions
-  Progress,       // rank -> host: primary rays shot so far by its processors
+  Progress,       // rank -> host: ray segments evaluated so far by each of its processors
   Results,        // rank -> host: its reports, once its processors have stopped
   Quit,           // host -> rank: no more renders; the host's exit status
 };
@@ -75,6 +75,12 @@ class MpiLink {
   std::vector<Pending> pending_;
   std::vector<char> inbox_;
   MpiTraffic traffic_;
+};
+
+// One processor's progress, as a Progress packet carries it (an array of these).
+struct ProcessorProgress {
+  std::uint32_t processor = 0;
+  std::uint64_t segmentsEvaluated = 0;
 };
 
 // Calls each(entry) for every T of a packet's body (an array of T as bytes).
