@@ -15,7 +15,8 @@
 #include "host/machine_progress.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
-#include "node/box_tree.h"
+#include "host/box_tree.h"
+#include "host/light_volume.h"
 
 namespace raycube::host {
 namespace {
@@ -114,18 +115,18 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
   // Spatial queries: the objects' eye boxes for the regions, their world boxes for the light volumes.
   std::vector<core::Box> eyeFrame, world;
   for (const node::EyeBox& b : boxes) eyeFrame.push_back(core::Box{b.lo, b.hi});
-  const node::BoxTree inEyeFrame(eyeFrame);
+  const BoxTree inEyeFrame(eyeFrame);
   const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
   if (lightVolumes)
     for (const core::Object& o : scene.objects) world.push_back(core::boundsOf(o, core::kCellMarginRelative));
-  const node::BoxTree inWorld(world);
+  const BoxTree inWorld(world);
   std::vector<std::vector<std::uint32_t>> rearLightObjects;
   node::LightSources rearSources;
   if (lightVolumes) {
     rearSources = rearLightSourcesOf(rear, boxes, view);
     for (const core::Light& light : scene.lights)
       rearLightObjects.push_back(
-          node::objectsInLightVolume(machine.lightRays, light.position, rearSources, inWorld));
+          objectsInLightVolume(machine.lightRays, light.position, rearSources, inWorld));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
   forEachProcessor(regions.processors(), [&](int p) {
@@ -145,7 +146,7 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
       setup.lightSources = lightSourcesOf(region, setup.objects, boxes, view);
       for (const core::Light& light : scene.lights)
         setup.lightObjects.push_back(
-            node::objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
+            objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
       setup.rearLightSources = rearSources;
       setup.rearLightObjects = rearLightObjects;
     }

@@ -16,7 +16,7 @@
 #include "core/trace_stats.h"
 #include "core/view.h"
 #include "core/whitted.h"
-#include "node/light_volume.h"
+#include "node/light_sources.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
 #include "node/region_database.h"

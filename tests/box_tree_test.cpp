@@ -1,12 +1,12 @@
-// The host's pruning index (node/box_tree.h) finds exactly what testing every box finds, in ascending order,
+// The host's pruning index (host/box_tree.h) finds exactly what testing every box finds, in ascending order,
 // with or without taking whole the subtrees that lie inside the query.
-#include "node/box_tree.h"
+#include "host/box_tree.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-namespace raycube::node {
+namespace raycube::host {
 namespace {
 
 bool overlaps(const core::Box& a, const core::Box& b) {
@@ -47,4 +47,4 @@ TEST(BoxTree, QueryFindsWhatTestingEveryBoxFinds) {
 }
 
 }  // namespace
-}  // namespace raycube::node
+}  // namespace raycube::host

@@ -226,22 +226,31 @@ TEST(SpscQueue, AccountingSamplesOccupancyEveryEighthOfTheCapacity) {
 }
 
 TEST(SpscQueue, AccountingTimesBlockingOnFullAndEmpty) {
+  // One side waits until the other is known to be blocked (a blocking episode is counted once its clock has
+  // started), then holds it 20 ms: the lower bounds hold however the threads are scheduled.
   SpscQueue<int, Accounting::kOn> queue(1);
+  auto waitUntilCounted = [&](auto counter, std::uint64_t above) {
+    while (counter(queue.stats()) <= above) std::this_thread::yield();
+  };
   queue.push(1);
   std::thread consumer([&] {
+    waitUntilCounted([](const QueueStats& s) { return s.refusedPushes; }, 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    EXPECT_EQ(queue.pop(), 1);  // frees the producer, which is blocked on the full queue
+    EXPECT_EQ(queue.pop(), 1);  // frees the producer, blocked on the full queue
     EXPECT_EQ(queue.pop(), 2);
-    EXPECT_EQ(queue.pop(), 3);  // blocks on the empty queue until the producer wakes up
   });
   queue.push(2);
+  consumer.join();
+  const QueueStats full = queue.stats();
+  EXPECT_GE(full.nanosBlockedFull, 20'000'000u);
+  EXPECT_EQ(full.refusedPushes, 1u);
+
+  std::thread emptyConsumer([&] { EXPECT_EQ(queue.pop(), 3); });  // blocks on the empty queue
+  waitUntilCounted([](const QueueStats& s) { return s.emptyPops; }, full.emptyPops);
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
   queue.push(3);
-  consumer.join();
-  const QueueStats stats = queue.stats();
-  EXPECT_GE(stats.nanosBlockedFull, 10'000'000u);
-  EXPECT_GE(stats.nanosBlockedEmpty, 10'000'000u);
-  EXPECT_GE(stats.refusedPushes, 1u);
+  emptyConsumer.join();
+  EXPECT_GE(queue.stats().nanosBlockedEmpty - full.nanosBlockedEmpty, 20'000'000u);
 }
 
 TEST(SpscQueue, WithoutAccountingStatsStayZeroAndCostNoSpace) {

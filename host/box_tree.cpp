@@ -1,8 +1,8 @@
-#include "node/box_tree.h"
+#include "host/box_tree.h"
 
 #include <algorithm>
 
-namespace raycube::node {
+namespace raycube::host {
 namespace {
 constexpr std::uint32_t kLeafSize = 4;
 }
@@ -45,4 +45,4 @@ void BoxTree::build(const std::vector<core::Box>& boxes, std::uint32_t begin, st
   build(boxes, mid, end, children + 1);
 }
 
-}  // namespace raycube::node
+}  // namespace raycube::host

@@ -1,11 +1,14 @@
-#include "node/light_volume.h"
+#include "host/light_volume.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/tolerances.h"
 
-namespace raycube::node {
+namespace raycube::host {
+
+using node::LightRayMode;
+using node::LightSources;
 namespace {
 
 using core::Vec3;
@@ -145,4 +148,4 @@ std::vector<std::uint32_t> objectsInLightVolume(LightRayMode mode, const core::V
       [&](const core::Box& b) { return sphereMayMeetCone(b.center(), 0.5 * glm::length(b.extent()), cone); });
 }
 
-}  // namespace raycube::node
+}  // namespace raycube::host

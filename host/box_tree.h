@@ -2,14 +2,14 @@
 // The host's spatial index for pruning (3.2 step 1, 3.7.2): a binary tree of boxes over the objects, so that
 // finding the objects a region or a light volume may hold costs about (objects found) x log(objects), not a
 // test of every object. The test must be monotone (a box that fails it holds no box that passes it), as
-// every test of eye_box.h and light_volume.h is: a subtree whose box fails is skipped whole.
+// every test of node/eye_box.h and host/light_volume.h is: a subtree whose box fails is skipped whole.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "core/box.h"
 
-namespace raycube::node {
+namespace raycube::host {
 
 class BoxTree {
  public:
@@ -59,4 +59,4 @@ std::vector<std::uint32_t> BoxTree::query(MayHold&& mayHold, HoldsAll&& holdsAll
   return found;
 }
 
-}  // namespace raycube::node
+}  // namespace raycube::host
