@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 
@@ -92,13 +94,30 @@ void forEachProcessor(int processors, Visit&& visit) {
     });
 }
 
-// The processor's own copy of the objects its lists name, the lists rewritten into its local indices.
-node::RegionDatabase gatherDatabaseOf(node::NodeSetup& setup, const core::Scene& scene,
-                                      const std::vector<node::EyeBox>& boxes) {
+// Every object list of a processor's setup.
+std::vector<std::vector<std::uint32_t>*> objectListsOf(node::NodeSetup& setup) {
   std::vector<std::vector<std::uint32_t>*> lists{&setup.objects, &setup.rearObjects};
   for (auto& objects : setup.lightObjects) lists.push_back(&objects);
   for (auto& objects : setup.rearLightObjects) lists.push_back(&objects);
-  return node::gatherRegionDatabase(scene, boxes, lists);
+  return lists;
+}
+
+// Each processor's copy of the objects its lists name, the lists rewritten into its local indices; the
+// processors holding the same objects share one copy (the ground polygon's light volumes can make that all
+// of them).
+void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::vector<std::uint32_t>>& held,
+                   const core::Scene& scene, const std::vector<node::EyeBox>& boxes) {
+  std::map<std::vector<std::uint32_t>, std::shared_ptr<const node::RegionDatabase>> byObjects;
+  for (std::size_t p = 0; p < setups.size(); ++p) {
+    std::shared_ptr<const node::RegionDatabase>& database = byObjects[held[p]];
+    if (!database)
+      database = std::make_shared<const node::RegionDatabase>(node::regionDatabaseOf(scene, boxes, held[p]));
+    setups[p].database = database;
+  }
+  forEachProcessor(int(setups.size()), [&](int p) {
+    node::NodeSetup& setup = setups[std::size_t(p)];
+    node::toLocalIndices(*setup.database, objectListsOf(setup));
+  });
 }
 
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
@@ -128,6 +147,7 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
           node::objectsInLightVolume(machine.lightRays, light.position, rearSources, inWorld));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
+  std::vector<std::vector<std::uint32_t>> held(setups.size());
   forEachProcessor(regions.processors(), [&](int p) {
     const node::SampleRect a = regions.areaOf(p);
     const node::ColumnSlab region{
@@ -149,9 +169,10 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
       setup.rearLightSources = rearSources;
       setup.rearLightObjects = rearLightObjects;
     }
-    setup.database = gatherDatabaseOf(setup, scene, boxes);
+    held[std::size_t(p)] = node::heldObjectsOf(objectListsOf(setup));
     setups[std::size_t(p)] = std::move(setup);
   });
+  giveDatabases(setups, held, scene, boxes);
   return setups;
 }
 
