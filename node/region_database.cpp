@@ -1,7 +1,5 @@
 #include "node/region_database.h"
 
-#include <algorithm>
-
 namespace raycube::node {
 namespace {
 
@@ -19,11 +17,13 @@ core::Scene withoutObjects(const core::Scene& scene) {
 
 }  // namespace
 
-std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists) {
+std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObjects) {
+  std::vector<char> named(sceneObjects, 0);
+  for (const std::vector<std::uint32_t>* list : lists)
+    for (std::uint32_t g : *list) named[g] = 1;
   std::vector<std::uint32_t> held;
-  for (const std::vector<std::uint32_t>* list : lists) held.insert(held.end(), list->begin(), list->end());
-  std::sort(held.begin(), held.end());
-  held.erase(std::unique(held.begin(), held.end()), held.end());
+  for (std::uint32_t g = 0; g < named.size(); ++g)
+    if (named[g]) held.push_back(g);
   return held;
 }
 
@@ -43,13 +43,16 @@ RegionDatabase regionDatabaseOf(const core::Scene& scene, const std::vector<EyeB
 
 void toLocalIndices(const RegionDatabase& database, ObjectLists lists) {
   const std::vector<std::uint32_t>& ids = database.globalIds;
+  if (ids.empty() || ids.back() + 1 == ids.size()) return;  // every object up to the last: local is global
+  std::vector<std::uint32_t> localOf(ids.back() + 1);
+  for (std::uint32_t local = 0; local < ids.size(); ++local) localOf[ids[local]] = local;
   for (std::vector<std::uint32_t>* list : lists)
-    for (std::uint32_t& o : *list) o = std::uint32_t(std::lower_bound(ids.begin(), ids.end(), o) - ids.begin());
+    for (std::uint32_t& o : *list) o = localOf[o];
 }
 
 RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
                                     ObjectLists lists) {
-  RegionDatabase db = regionDatabaseOf(scene, eyeBoxes, heldObjectsOf(lists));
+  RegionDatabase db = regionDatabaseOf(scene, eyeBoxes, heldObjectsOf(lists, scene.objects.size()));
   toLocalIndices(db, lists);
   return db;
 }

@@ -22,8 +22,9 @@ struct RegionDatabase {
 
 using ObjectLists = std::span<std::vector<std::uint32_t>* const>;
 
-// Every object named in `lists` (global indices), ascending and once each: what a processor holds.
-std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists);
+// Every object named in `lists` (global indices below sceneObjects), ascending and once each: what a
+// processor holds.
+std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObjects);
 // The database of the objects `held` (ascending global indices into `scene`, whose eye boxes are `eyeBoxes`).
 RegionDatabase regionDatabaseOf(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
                                 std::vector<std::uint32_t> held);
