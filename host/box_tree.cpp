@@ -45,4 +45,18 @@ void BoxTree::build(const std::vector<core::Box>& boxes, std::uint32_t begin, st
   build(boxes, mid, end, children + 1);
 }
 
+// Found indices are distinct: a light volume reaching most of the scene (the ground polygon's) is put in order
+// by marking them, in time linear in the objects; a few by sorting them.
+void BoxTree::sortAscending(std::vector<std::uint32_t>& found) const {
+  if (found.size() < order_.size() / 16) {
+    std::sort(found.begin(), found.end());
+    return;
+  }
+  std::vector<char> isFound(order_.size(), 0);
+  for (std::uint32_t o : found) isFound[o] = 1;
+  found.clear();
+  for (std::uint32_t o = 0; o < isFound.size(); ++o)
+    if (isFound[o]) found.push_back(o);
+}
+
 }  // namespace raycube::host

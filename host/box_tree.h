@@ -31,6 +31,7 @@ class BoxTree {
     std::uint32_t children = 0;        // inner: left child here, right child next; 0: a leaf
   };
   void build(const std::vector<core::Box>& boxes, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
+  void sortAscending(std::vector<std::uint32_t>& found) const;
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> order_;  // object indices, leaves point into it
   std::vector<core::Box> leafBoxes_;  // per entry of order_
@@ -55,7 +56,7 @@ std::vector<std::uint32_t> BoxTree::query(MayHold&& mayHold, HoldsAll&& holdsAll
         if (mayHold(leafBoxes_[i])) found.push_back(order_[i]);
     }
   }
-  std::sort(found.begin(), found.end());
+  sortAscending(found);
   return found;
 }
 

@@ -1,5 +1,8 @@
 #include "host/machine_wire.h"
 
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
 #include <variant>
 
 #include "core/overloaded.h"
@@ -126,13 +129,36 @@ std::vector<std::vector<std::uint32_t>> readObjectLists(WireReader& in) {
   return lists;
 }
 
-void writeSetup(WireWriter& out, const node::NodeSetup& setup) {
+void writeDatabase(WireWriter& out, const node::RegionDatabase& database) {
+  writeScene(out, database.scene);
+  out.vector(database.globalIds);
+  out.vector(database.eyeBoxes);
+}
+
+std::shared_ptr<const node::RegionDatabase> readDatabase(WireReader& in) {
+  auto database = std::make_shared<node::RegionDatabase>();
+  database->scene = readScene(in);
+  database->globalIds = in.vector<std::uint32_t>();
+  database->eyeBoxes = in.vector<node::EyeBox>();
+  return database;
+}
+
+// Processors holding the same objects share one database (host/machine.cpp): it travels once per job, and
+// the setups name it by its place in the job's table, so the rank shares it again.
+using DatabaseTable = std::vector<const node::RegionDatabase*>;
+
+DatabaseTable databasesOf(std::span<const node::NodeSetup> setups) {
+  DatabaseTable table;
+  for (const node::NodeSetup& s : setups)
+    if (std::find(table.begin(), table.end(), s.database.get()) == table.end()) table.push_back(s.database.get());
+  return table;
+}
+
+void writeSetup(WireWriter& out, const node::NodeSetup& setup, const DatabaseTable& databases) {
   out.value(setup.id);
   out.value(setup.cells);
   out.value(setup.cellLevel);
-  writeScene(out, setup.database.scene);
-  out.vector(setup.database.globalIds);
-  out.vector(setup.database.eyeBoxes);
+  out.value(std::uint64_t(std::find(databases.begin(), databases.end(), setup.database.get()) - databases.begin()));
   out.vector(setup.objects);
   out.vector(setup.rearObjects);
   out.value(setup.lightRays);
@@ -142,14 +168,15 @@ void writeSetup(WireWriter& out, const node::NodeSetup& setup) {
   writeObjectLists(out, setup.rearLightObjects);
 }
 
-node::NodeSetup readSetup(WireReader& in) {
+node::NodeSetup readSetup(WireReader& in,
+                          const std::vector<std::shared_ptr<const node::RegionDatabase>>& databases) {
   node::NodeSetup setup;
   setup.id = in.value<int>();
   setup.cells = in.value<node::CellStructure>();
   setup.cellLevel = in.value<int>();
-  setup.database.scene = readScene(in);
-  setup.database.globalIds = in.vector<std::uint32_t>();
-  setup.database.eyeBoxes = in.vector<node::EyeBox>();
+  const std::uint64_t database = in.value<std::uint64_t>();
+  if (database >= databases.size()) throw std::runtime_error("a job names a region database it does not hold");
+  setup.database = databases[database];
   setup.objects = in.vector<std::uint32_t>();
   setup.rearObjects = in.vector<std::uint32_t>();
   setup.lightRays = in.value<node::LightRayMode>();
@@ -171,8 +198,11 @@ std::vector<char> encodeJob(const JobSettings& settings, const node::MachineCont
   out.value(settings.jitterSeed);
   out.vector(settings.rankOf);
   writeContext(out, context);
+  const DatabaseTable databases = databasesOf(setups);
+  out.value(std::uint64_t(databases.size()));
+  for (const node::RegionDatabase* d : databases) writeDatabase(out, *d);
   out.value(std::uint64_t(setups.size()));
-  for (const node::NodeSetup& s : setups) writeSetup(out, s);
+  for (const node::NodeSetup& s : setups) writeSetup(out, s, databases);
   return out.take();
 }
 
@@ -185,8 +215,10 @@ MachineJob decodeJob(std::span<const char> bytes) {
   settings.jitterSeed = in.value<unsigned>();
   settings.rankOf = in.vector<int>();
   MachineJob job{std::move(settings), readContext(in), {}};
+  std::vector<std::shared_ptr<const node::RegionDatabase>> databases(in.value<std::uint64_t>());
+  for (auto& d : databases) d = readDatabase(in);
   job.setups.resize(in.value<std::uint64_t>());
-  for (node::NodeSetup& s : job.setups) s = readSetup(in);
+  for (node::NodeSetup& s : job.setups) s = readSetup(in, databases);
   return job;
 }
 

@@ -62,7 +62,7 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
   std::uint64_t objectsHeld = 0;
   for (const node::NodeSetup& s : job.setups) {
     ids.push_back(s.id);
-    objectsHeld += s.database.size();
+    objectsHeld += s.database->size();
     transports.push_back(&net.endpoint(s.id));
     if (job.settings.jitterSeed > 0) {
       jitters.push_back(std::make_unique<queues::JitterTransport<Real>>(

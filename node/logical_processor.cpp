@@ -14,13 +14,13 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
                                          BasicTransport<Real>& transport)
     : context_(context),
       setup_(std::move(setup)),
-      scene_(setup_.database.scene),
+      scene_(setup_.database->scene),
       shading_(scene_, context.shading),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
       structure_(chosenFor(setup_.cells, setup_.objects.size())),
       cells_(area_, context.lines(), structure_ == CellStructure::Bvh ? 0 : setup_.cellLevel,
-             structure_ == CellStructure::Paper, setup_.objects, setup_.database.eyeBoxes),
+             structure_ == CellStructure::Paper, setup_.objects, setup_.database->eyeBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
       inbox_(scheduling::kInboxBatch),
@@ -31,10 +31,11 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.area = area_;
   stats_.objects = cells_.objectCount();
   stats_.rearObjects = setup_.rearObjects.size();
-  stats_.heldObjects = setup_.database.size();
+  stats_.heldObjects = setup_.database->size();
   stats_.cells = cells_.cellCount();
   stats_.bvh = structure_ == CellStructure::Bvh;
-  if (stats_.bvh || setup_.lightRays != LightRayMode::Messages) databaseBvh_.emplace(scene_, shading_);
+  if (stats_.bvh || setup_.lightRays != LightRayMode::Messages)
+    databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading);
   if (setup_.lightRays != LightRayMode::Messages) {
     std::vector<char> inCells(scene_.objects.size(), 0);
     for (std::uint32_t o : setup_.objects) inCells[o] = 1;
@@ -43,10 +44,9 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       for (std::uint32_t o : objects) stats_.extraLightObjects += inCells[o] ? 0 : 1;
     }
   }
-  // What only the construction needed: the light lists (the BVH holds their objects) and the eye boxes.
+  // What only the construction needed: the light lists (the BVH holds their objects).
   setup_.lightObjects = {};
   setup_.rearLightObjects = {};
-  setup_.database.eyeBoxes = {};
 }
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
@@ -194,7 +194,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   double transmission = m.transmission;
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
-    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *databaseBvh_, hit, transmission)
+    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, databaseBvh_->bvh, hit, transmission)
                       : visitInterval(ray, ta, tb, objects, hit, transmission);
   };
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
@@ -245,7 +245,7 @@ bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& trans
   };
   if (!inside(setup_.lightSources.eyeBox) && !inside(setup_.rearLightSources.eyeBox)) return false;
   ++stats_.lightRaysTracedLocally;
-  transmission = core::lightRayTransmission(shading_, *databaseBvh_, m.ray, stats_.processed, lightRayScratch_);
+  transmission = core::lightRayTransmission(shading_, databaseBvh_->bvh, m.ray, stats_.processed, lightRayScratch_);
   return true;
 }
 

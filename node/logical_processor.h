@@ -16,6 +16,7 @@
 #include "core/trace_stats.h"
 #include "core/view.h"
 #include "core/whitted.h"
+#include "node/database_bvh.h"
 #include "node/light_sources.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
@@ -28,12 +29,13 @@
 namespace raycube::node {
 
 // What the host hands a processor (3.2 steps 1-2): its place, its pixel area, its pruned objects. Every
-// object list holds local indices into `database`.
+// object list holds local indices into `database`, which processors holding the same objects share (an engine
+// sending a setup to another address space sends the database's value).
 struct NodeSetup {
   int id = 0;
   CellStructure cells = CellStructure::Auto;  // the paper's cells or a BVH (Auto: by the region's objects)
   int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
-  RegionDatabase database;                 // the only objects this processor holds
+  std::shared_ptr<const RegionDatabase> database;  // the only objects this processor holds
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
   std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
   // 3.7.2: with light cones or pyramids, the objects each light's rays from this region can meet, and the
@@ -127,7 +129,8 @@ class LogicalProcessor {
   // Every object the processor holds, in one BVH: the region's with CellStructure::Bvh, and the light
   // volumes' when light rays are traced where they start. Holding more than a query needs costs it nothing
   // but box tests: an object outside the region (or off a light ray's segment) never has a hit in it.
-  std::optional<core::BasicBvh<Real>> databaseBvh_;
+  // Shared with the processors holding the same database (see sharedBvhOf).
+  std::shared_ptr<const DatabaseBvh<Real>> databaseBvh_;
   long long nextPrimary_ = 0;
   std::atomic<std::uint64_t> segmentsEvaluated_{0};  // written by this node only, once per step that worked
   std::vector<Message> local_;                   // rays spawned here, still to evaluate here

@@ -1,7 +1,5 @@
 #include "node/region_database.h"
 
-#include <cstdint>
-
 namespace raycube::node {
 namespace {
 
@@ -19,23 +17,43 @@ core::Scene withoutObjects(const core::Scene& scene) {
 
 }  // namespace
 
-RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
-                                    std::span<std::vector<std::uint32_t>* const> lists) {
-  constexpr std::uint32_t kNotHeld = UINT32_MAX;
-  std::vector<std::uint32_t> localOf(scene.objects.size(), kNotHeld);
+std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObjects) {
+  std::vector<char> named(sceneObjects, 0);
   for (const std::vector<std::uint32_t>* list : lists)
-    for (std::uint32_t g : *list) localOf[g] = 0;
+    for (std::uint32_t g : *list) named[g] = 1;
+  std::vector<std::uint32_t> held;
+  for (std::uint32_t g = 0; g < named.size(); ++g)
+    if (named[g]) held.push_back(g);
+  return held;
+}
+
+RegionDatabase regionDatabaseOf(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
+                                std::vector<std::uint32_t> held) {
   RegionDatabase db;
   db.scene = withoutObjects(scene);
-  for (std::uint32_t g = 0; g < localOf.size(); ++g) {
-    if (localOf[g] == kNotHeld) continue;
-    localOf[g] = std::uint32_t(db.globalIds.size());
-    db.globalIds.push_back(g);
+  db.scene.objects.reserve(held.size());
+  db.eyeBoxes.reserve(held.size());
+  for (std::uint32_t g : held) {
     db.scene.objects.push_back(scene.objects[g]);
     db.eyeBoxes.push_back(eyeBoxes[g]);
   }
+  db.globalIds = std::move(held);
+  return db;
+}
+
+void toLocalIndices(const RegionDatabase& database, ObjectLists lists) {
+  const std::vector<std::uint32_t>& ids = database.globalIds;
+  if (ids.empty() || ids.back() + 1 == ids.size()) return;  // every object up to the last: local is global
+  std::vector<std::uint32_t> localOf(ids.back() + 1);
+  for (std::uint32_t local = 0; local < ids.size(); ++local) localOf[ids[local]] = local;
   for (std::vector<std::uint32_t>* list : lists)
     for (std::uint32_t& o : *list) o = localOf[o];
+}
+
+RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
+                                    ObjectLists lists) {
+  RegionDatabase db = regionDatabaseOf(scene, eyeBoxes, heldObjectsOf(lists, scene.objects.size()));
+  toLocalIndices(db, lists);
   return db;
 }
 

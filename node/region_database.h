@@ -20,9 +20,20 @@ struct RegionDatabase {
   std::size_t size() const { return globalIds.size(); }
 };
 
+using ObjectLists = std::span<std::vector<std::uint32_t>* const>;
+
+// Every object named in `lists` (global indices below sceneObjects), ascending and once each: what a
+// processor holds.
+std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObjects);
+// The database of the objects `held` (ascending global indices into `scene`, whose eye boxes are `eyeBoxes`).
+RegionDatabase regionDatabaseOf(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
+                                std::vector<std::uint32_t> held);
+// Rewrites each list, of global indices all held by `database`, into its local indices.
+void toLocalIndices(const RegionDatabase& database, ObjectLists lists);
+
 // The database holding every object named in `lists` (global indices into `scene`, whose eye boxes are
 // `eyeBoxes`); rewrites each list in place into local indices of that database.
 RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
-                                    std::span<std::vector<std::uint32_t>* const> lists);
+                                    ObjectLists lists);
 
 }  // namespace raycube::node

@@ -115,7 +115,7 @@ class LogicalProcessorTest : public ::testing::Test {
       if (reachesBehindEye(boxes[o])) s.rearObjects.push_back(o);
     }
     std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects};
-    s.database = gatherRegionDatabase(scene_, boxes, lists);
+    s.database = std::make_shared<const RegionDatabase>(gatherRegionDatabase(scene_, boxes, lists));
     return s;
   }
 

@@ -44,7 +44,7 @@ node::NodeSetup setupOf(const core::Scene& scene, const node::MachineContext& co
   s.rearLightObjects = {{0}, {0}, {}};
   std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects, &s.lightObjects[0], &s.lightObjects[2],
                                          &s.rearLightObjects[0], &s.rearLightObjects[1]};
-  s.database = node::gatherRegionDatabase(scene, boxes, lists);
+  s.database = std::make_shared<const node::RegionDatabase>(node::gatherRegionDatabase(scene, boxes, lists));
   return s;
 }
 
@@ -115,19 +115,46 @@ TEST(MachineWireTest, JobComesBackAsItLeft) {
   EXPECT_EQ(s.lightSources.corners, setup.lightSources.corners);
   EXPECT_EQ(s.lightObjects, setup.lightObjects);
   EXPECT_EQ(s.rearLightObjects, setup.rearLightObjects);
-  EXPECT_EQ(s.database.globalIds, setup.database.globalIds);
-  ASSERT_EQ(s.database.eyeBoxes.size(), setup.database.eyeBoxes.size());
-  for (std::size_t k = 0; k < s.database.eyeBoxes.size(); ++k)
-    EXPECT_TRUE(sameBytes(s.database.eyeBoxes[k], setup.database.eyeBoxes[k]));
-  const core::Scene& held = s.database.scene;
+  EXPECT_EQ(s.database->globalIds, setup.database->globalIds);
+  ASSERT_EQ(s.database->eyeBoxes.size(), setup.database->eyeBoxes.size());
+  for (std::size_t k = 0; k < s.database->eyeBoxes.size(); ++k)
+    EXPECT_TRUE(sameBytes(s.database->eyeBoxes[k], setup.database->eyeBoxes[k]));
+  const core::Scene& held = s.database->scene;
   EXPECT_EQ(held.name, scene.name);
-  EXPECT_TRUE(sameBytes(held.camera, scene.camera));
+  // Field by field: the camera has padding, which no copy need keep.
+  EXPECT_EQ(held.camera.from, scene.camera.from);
+  EXPECT_EQ(held.camera.at, scene.camera.at);
+  EXPECT_EQ(held.camera.up, scene.camera.up);
+  EXPECT_EQ(held.camera.angleDegrees, scene.camera.angleDegrees);
+  EXPECT_EQ(held.camera.hither, scene.camera.hither);
+  EXPECT_EQ(held.camera.width, scene.camera.width);
+  EXPECT_EQ(held.camera.height, scene.camera.height);
+  EXPECT_EQ(held.camera.line, scene.camera.line);
   EXPECT_EQ(held.lights.size(), scene.lights.size());
   EXPECT_EQ(held.materials.size(), scene.materials.size());
-  ASSERT_EQ(held.objects.size(), setup.database.scene.objects.size());
-  for (std::size_t k = 0; k < held.objects.size(); ++k) expectSameObject(held.objects[k], setup.database.scene.objects[k]);
+  ASSERT_EQ(held.objects.size(), setup.database->scene.objects.size());
+  for (std::size_t k = 0; k < held.objects.size(); ++k) expectSameObject(held.objects[k], setup.database->scene.objects[k]);
   // The cone and the patch are among the objects held (the last two of the scene).
   EXPECT_EQ(held.objects.back().shape.index(), 3u);
+}
+
+TEST(MachineWireTest, SharedDatabaseTravelsOnceAndArrivesShared) {
+  const core::Scene scene = everyShape();
+  const node::MachineContext context = contextOf(scene);
+  std::vector<node::NodeSetup> setups(3, setupOf(scene, context));
+  setups[1].id = 4;
+  setups[2] = setupOf(scene, context);  // the same objects, but a copy of its own
+  setups[2].id = 5;
+  const std::vector<char> one = encodeJob(JobSettings{}, context, std::span(setups.data(), 1));
+  const std::vector<char> two = encodeJob(JobSettings{}, context, std::span(setups.data(), 2));
+  const std::vector<char> three = encodeJob(JobSettings{}, context, setups);
+  const std::size_t databaseBytes = three.size() - two.size() - (two.size() - one.size());
+  EXPECT_GT(databaseBytes, 0u) << "a distinct database travels; a shared one does not travel again";
+  const MachineJob job = decodeJob(three);
+  ASSERT_EQ(job.setups.size(), 3u);
+  EXPECT_EQ(job.setups[0].database, job.setups[1].database);
+  EXPECT_NE(job.setups[0].database, job.setups[2].database);
+  EXPECT_EQ(job.setups[2].database->globalIds, setups[2].database->globalIds);
 }
 
 TEST(MachineWireTest, ResultsComeBackAsTheyLeft) {

@@ -1,0 +1,72 @@
+// What a processor holds (node/region_database.h): the union of its lists, once each and in the scene's
+// order; its lists rewritten into local indices naming the same objects; and one BVH per database, shared by
+// every processor holding that very database (node/database_bvh.h).
+#include "node/region_database.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <variant>
+
+#include "core/nff_reader.h"
+#include "core/view.h"
+#include "node/database_bvh.h"
+
+namespace raycube::node {
+namespace {
+
+const char* kSixSpheres =
+    "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 16 16\n"
+    "l 5 5 5\nf 0.8 0.8 0.8 0.5 0.5 10 0 1\n"
+    "s -5 0 0 0.5\ns -3 0 0 0.5\ns -1 0 0 0.5\ns 1 0 0 0.5\ns 3 0 0 0.5\ns 5 0 0 0.5\n";
+
+class RegionDatabaseTest : public ::testing::Test {
+ protected:
+  RegionDatabaseTest() : scene_(core::parseNff(kSixSpheres, "six.nff")), view_(scene_.camera, 16, 16, core::Sampling::Centers) {
+    for (const core::Object& o : scene_.objects)
+      boxes_.push_back(eyeBoxOf(o, view_, 2 * scene_.largestCoordinate()));
+  }
+  core::Scene scene_;
+  core::View view_;
+  std::vector<EyeBox> boxes_;
+};
+
+TEST_F(RegionDatabaseTest, HoldsTheUnionOfItsListsOnceEachInTheScenesOrder) {
+  std::vector<std::uint32_t> region{4, 1}, light{1, 5, 4}, empty;
+  std::vector<std::uint32_t>* lists[] = {&region, &light, &empty};
+  EXPECT_EQ(heldObjectsOf(lists, scene_.objects.size()), (std::vector<std::uint32_t>{1, 4, 5}));
+}
+
+TEST_F(RegionDatabaseTest, ListsNameTheSameObjectsInLocalIndices) {
+  for (const std::vector<std::uint32_t>& named :
+       {std::vector<std::uint32_t>{5, 2, 3}, std::vector<std::uint32_t>{2, 0, 1}, std::vector<std::uint32_t>{}}) {
+    std::vector<std::uint32_t> region = named;
+    std::vector<std::uint32_t> rear = named.empty() ? std::vector<std::uint32_t>{} : std::vector{named[0]};
+    std::vector<std::uint32_t>* lists[] = {&region, &rear};
+    const RegionDatabase db = gatherRegionDatabase(scene_, boxes_, lists);
+    ASSERT_EQ(db.scene.objects.size(), named.size());
+    ASSERT_EQ(db.eyeBoxes.size(), named.size());
+    for (std::size_t i = 0; i < named.size(); ++i) {
+      const std::uint32_t global = db.globalIds[region[i]];
+      EXPECT_EQ(global, named[i]);
+      EXPECT_EQ(std::get<core::Sphere>(db.scene.objects[region[i]].shape).center,
+                std::get<core::Sphere>(scene_.objects[global].shape).center);
+      EXPECT_EQ(db.eyeBoxes[region[i]].lo, boxes_[global].lo);
+    }
+    if (!named.empty()) EXPECT_EQ(db.globalIds[rear[0]], named[0]);
+  }
+}
+
+TEST_F(RegionDatabaseTest, ProcessorsHoldingTheSameDatabaseShareOneTree) {
+  std::vector<std::uint32_t> held{0, 2, 3};
+  auto database = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, boxes_, held));
+  auto equal = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, boxes_, held));
+  const auto tree = sharedBvhOf<double>(database, core::ShadingOptions{});
+  EXPECT_EQ(sharedBvhOf<double>(database, core::ShadingOptions{}), tree);
+  EXPECT_EQ(tree->database, database);
+  EXPECT_NE(sharedBvhOf<double>(equal, core::ShadingOptions{}), tree);  // another copy: its own tree
+  EXPECT_EQ(&tree->bvh, &sharedBvhOf<double>(database, core::ShadingOptions{})->bvh);
+}
+
+}  // namespace
+}  // namespace raycube::node
