@@ -69,8 +69,8 @@ std::string caseName(const testing::TestParamInfo<Case>& info) {
 
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const char* path : {"scenes/balls4.nff", "tests/data/spd/gears4.nff", "tests/data/spd/shells5.nff",
-                            "tests/data/spd/tree11.nff"})
+  for (const char* path : {"scenes/balls4.nff", "scenes/gears4.nff", "scenes/shells5.nff",
+                            "scenes/tree11.nff"})
     for (node::CellStructure cells : {node::CellStructure::Paper, node::CellStructure::Auto})
       all.push_back({path, cells});
   return all;
