@@ -220,7 +220,7 @@ if [[ $sweep == 1 ]]; then
   done
   echo "### Cost per ray against primitives (SPD balls, $sweep_size, depth $depth)"
   echo
-  echo "Wall time per ray in microseconds (every ray of the tree: eye, reflected, shadow), median of $runs runs;" \
+  echo "Wall time per ray in microseconds (every ray of the tree: eye, reflected, light), median of $runs runs;" \
     "tracing = the tracing phase only, whole = the whole process."
   echo
   echo "| balls size | primitives | rays | image-parallel tracing (µs/ray) | image-parallel whole (µs/ray) | machine 4×4 tracing (µs/ray) | machine 4×4 whole (µs/ray) |"
