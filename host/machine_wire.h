@@ -23,6 +23,7 @@ namespace raycube::host {
 class WireWriter {
  public:
   void bytes(const void* data, std::size_t n) {
+    if (n == 0) return;  // data may be null (an empty vector's)
     const char* p = static_cast<const char*>(data);
     out_.insert(out_.end(), p, p + n);
   }
@@ -49,6 +50,7 @@ class WireReader {
   explicit WireReader(std::span<const char> in) : in_(in) {}
   void bytes(void* data, std::size_t n) {
     if (n > in_.size() - at_) throw std::runtime_error("a message between ranks was cut short");
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not see
     std::memcpy(data, in_.data() + at_, n);
     at_ += n;
   }
