@@ -11,7 +11,9 @@ Whitted::Whitted(const Scene& scene, ShadingOptions options) : scene_(scene), op
   ambient_ = count > 0 ? std::sqrt(count) / (2 * count) : 0.0;
   for (const Light& light : scene.lights)
     lightIntensity_.push_back(light.hasColor ? light.color : Color(ambient_));
-  sceneTransmits_ = scene.features().transmission;
+  const SceneFeatures features = scene.features();
+  sceneTransmits_ = features.transmission;
+  spawnsSecondaryRays_ = options.maxDepth > 1 && (features.reflection || features.transmission);
 }
 
 template <class Real>

@@ -62,6 +62,9 @@ class Whitted {
   // hit.
   bool sceneTransmits() const { return sceneTransmits_; }
   int maxDepth() const { return options_.maxDepth; }
+  // Some ray may be reflected or refracted: rays other than eye rays reach objects, anywhere, even behind
+  // the eye; otherwise only eye rays and their light rays are traced.
+  bool spawnsSecondaryRays() const { return spawnsSecondaryRays_; }
   bool worthSpawning(double coeff) const { return coeff * options_.raysPerSample >= options_.minWeight; }
 
  private:
@@ -70,6 +73,7 @@ class Whitted {
   std::vector<Color> lightIntensity_;
   double ambient_;
   bool sceneTransmits_;
+  bool spawnsSecondaryRays_;
 };
 
 // Offset a spawned ray's origin off the surface, scale-aware (see kSpawnOffsetRelativeOf).

@@ -3,11 +3,16 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
+
+#include "host/parallel_for.h"
 
 namespace raycube::host {
 namespace {
 
 constexpr int kCoarseCandidates = 32;
+// Pieces times candidate lines above which the candidates are weighed on all cores.
+constexpr std::size_t kParallelWork = 1 << 18;
 
 struct Splitter {
   LoadMetric metric;
@@ -49,31 +54,51 @@ struct Splitter {
     const long long across = axis == 0 ? r.height() : r.width();
     int best = -1, p1 = 0;
     double bestImbalance = std::numeric_limits<double>::infinity();
-    auto consider = [&](int k) {
-      // Processors each side can take: at least one sample each. Prefer halving the count (ratio
-      // floor(P/2) : ceil(P/2)); shift it only when the cut leaves one side too few samples.
+    // Processors each side of line k can take: at least one sample each. Prefer halving the count (ratio
+    // floor(P/2) : ceil(P/2)); shift it only when the cut leaves one side too few samples. 0: none fits.
+    auto firstSide = [&](int k) {
       const long long most = std::min<long long>(processors - 1, (k - lo) * across);
       const long long least = std::max<long long>(1, processors - (hi - k) * across);
-      if (least > most) return;
-      const int first = int(std::clamp<long long>(processors / 2, least, most)), second = processors - first;
-      double below, above;
-      sides(pieces, axis, k, below, above);
-      // Equal load per processor on both sides; with no load at all, equal area per processor.
-      const double imbalance = (below + above > 0)
-                                   ? std::abs(below * second - above * first)
-                                   : std::abs(double(k - lo) * second - double(hi - k) * first);
-      if (imbalance < bestImbalance) {
-        bestImbalance = imbalance;
-        best = k;
-        p1 = first;
+      return least > most ? 0 : int(std::clamp<long long>(processors / 2, least, most));
+    };
+    // The loads each side of every feasible line among `lines`, then the best in order (the first of equals).
+    auto consider = [&](const std::vector<int>& lines) {
+      std::vector<int> feasible;
+      for (int k : lines)
+        if (firstSide(k) > 0) feasible.push_back(k);
+      std::vector<double> below(feasible.size()), above(feasible.size());
+      auto weigh = [&](int i) {
+        const auto at = std::size_t(i);
+        sides(pieces, axis, feasible[at], below[at], above[at]);
+      };
+      if (pieces.size() * feasible.size() >= kParallelWork)
+        parallelFor(int(feasible.size()), weigh);
+      else
+        for (int i = 0; i < int(feasible.size()); ++i) weigh(i);
+      for (std::size_t i = 0; i < feasible.size(); ++i) {
+        const int k = feasible[i], first = firstSide(k), second = processors - first;
+        // Equal load per processor on both sides; with no load at all, equal area per processor.
+        const double imbalance = (below[i] + above[i] > 0)
+                                     ? std::abs(below[i] * second - above[i] * first)
+                                     : std::abs(double(k - lo) * second - double(hi - k) * first);
+        if (imbalance < bestImbalance) {
+          bestImbalance = imbalance;
+          best = k;
+          p1 = first;
+        }
       }
+    };
+    auto range = [](int from, int to, int step) {
+      std::vector<int> lines;
+      for (int k = from; k < to; k += step) lines.push_back(k);
+      return lines;
     };
     // Coarse to fine: every step-th line, then every line around the best one (loads vary smoothly).
     const int step = std::max(1, (hi - lo) / kCoarseCandidates);
-    for (int k = lo + 1; k < hi; k += step) consider(k);
+    consider(range(lo + 1, hi, step));
     const int coarse = best < 0 ? lo + 1 : best;
-    for (int k = std::max(lo + 1, coarse - step); k < std::min(hi, coarse + step + 1); ++k) consider(k);
-    for (int k = lo + 1; best < 0 && k < hi; ++k) consider(k);  // feasible lines may all lie between
+    consider(range(std::max(lo + 1, coarse - step), std::min(hi, coarse + step + 1), 1));
+    for (int k = lo + 1; best < 0 && k < hi; ++k) consider({k});  // feasible lines may all lie between
     if (best < 0) throw std::invalid_argument("BSP: an area is too small for its processors");
     const int p2 = processors - p1;
     node::SampleRect first = r, second = r;

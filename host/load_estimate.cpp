@@ -1,10 +1,13 @@
 #include "host/load_estimate.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 
 #include "core/bvh.h"
 #include "core/ray_tree.h"
+#include "host/parallel_for.h"
 
 namespace raycube::host {
 namespace {
@@ -59,31 +62,40 @@ bool projectSegment(const core::View& view, const core::Ray& ray, double t1, dou
 
 LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
                          int window, LoadMetric metric, bool lightRaysWhereTheyStart) {
-  LoadSample sample;
-  sample.raysPerSegment = double(window) * window;
   const core::Bvh database(scene, shading);
-  core::DiscardContributions colours;
-  core::TraceCounters counters;
-  core::RayTreeScratch scratch;
   const double zNear = std::max(view.hither(), 1e-9 * (1 + glm::length(view.eye())));
-  auto record = [&](const core::TracedRay& ray, double tEnd, std::uint64_t work) {
-    ++sample.raysTraced;
-    ScreenSegment s;
-    const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Light;
-    if (!projectSegment(view, ray.ray, point ? ray.ray.tMin : tEnd, zNear, s)) return;
-    s.work = double(work);
-    s.weight = metric == LoadMetric::Rays ? 1.0 : 1 + s.work;
-    sample.segments.push_back(s);
-  };
-  // One sample per window, at its centre (3.7.1: "choosing one pixel in each window").
-  for (int wy = 0; wy * window < view.samplesY(); ++wy)
+  // One sample per window, at its centre (3.7.1: "choosing one pixel in each window"); the rows of windows
+  // on all cores, then joined in order, so the segments come in the same order however many cores ran.
+  const int windowRows = (view.samplesY() + window - 1) / window;
+  std::vector<LoadSample> rows{std::size_t(windowRows)};
+  parallelFor(windowRows, [&](int wy) {
+    LoadSample& row = rows[std::size_t(wy)];
+    core::DiscardContributions colours;
+    core::TraceCounters counters;
+    core::RayTreeScratch scratch;
+    auto record = [&](const core::TracedRay& ray, double tEnd, std::uint64_t work) {
+      ++row.raysTraced;
+      ScreenSegment s;
+      const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Light;
+      if (!projectSegment(view, ray.ray, point ? ray.ray.tMin : tEnd, zNear, s)) return;
+      s.work = double(work);
+      s.weight = metric == LoadMetric::Rays ? 1.0 : 1 + s.work;
+      row.segments.push_back(s);
+    };
     for (int wx = 0; wx * window < view.samplesX(); ++wx) {
       const int sx = std::min(view.samplesX() - 1, wx * window + window / 2);
       const int sy = std::min(view.samplesY() - 1, wy * window + window / 2);
-      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), colours, counters, scratch,
-                         record);
-      ++sample.pixelsSampled;
+      core::traceRayTree(shading, database, core::eyeRayOf(view, sx, sy), colours, counters, scratch, record);
+      ++row.pixelsSampled;
     }
+  });
+  LoadSample sample;
+  sample.raysPerSegment = double(window) * window;
+  for (const LoadSample& row : rows) {
+    sample.segments.insert(sample.segments.end(), row.segments.begin(), row.segments.end());
+    sample.raysTraced += row.raysTraced;
+    sample.pixelsSampled += row.pixelsSampled;
+  }
   if (metric == LoadMetric::Cost && !sample.segments.empty()) {
     // A ray counts one, plus its work relative to the mean ray's: every ray costs its message, walk set-up
     // and shading, and some much more in intersection tests.
@@ -121,24 +133,72 @@ bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, doubl
   return true;
 }
 
+namespace {
+
+// The areas overlapping each bucket of a coarse grid over the screen, so that a segment is clipped only
+// against the areas near it (64 areas by a hundred thousand sub-sampled segments otherwise).
+class AreaBuckets {
+ public:
+  explicit AreaBuckets(const std::vector<node::SampleRect>& areas) {
+    for (const node::SampleRect& a : areas) {
+      width_ = std::max(width_, a.x1);
+      height_ = std::max(height_, a.y1);
+    }
+    bucketWidth_ = std::max(1, (width_ + kBuckets - 1) / kBuckets);
+    bucketHeight_ = std::max(1, (height_ + kBuckets - 1) / kBuckets);
+    for (std::uint32_t i = 0; i < areas.size(); ++i) {
+      const node::SampleRect& a = areas[i];
+      // Closed areas: a piece on an area's far boundary is clipped, then given to the next area.
+      for (int by = row(a.y0); by <= row(a.y1); ++by)
+        for (int bx = column(a.x0); bx <= column(a.x1); ++bx) buckets_[std::size_t(by * kBuckets + bx)].push_back(i);
+    }
+  }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  // Calls visit(area) once for every area whose bucket the segment's bounding box meets.
+  template <class Visit>
+  void forAreasNear(const ScreenSegment& s, std::vector<std::uint64_t>& seenBy, std::uint64_t stamp,
+                    Visit&& visit) const {
+    const int bx0 = column(std::min(s.x0, s.x1)), bx1 = column(std::max(s.x0, s.x1));
+    const int by0 = row(std::min(s.y0, s.y1)), by1 = row(std::max(s.y0, s.y1));
+    for (int by = by0; by <= by1; ++by)
+      for (int bx = bx0; bx <= bx1; ++bx)
+        for (std::uint32_t area : buckets_[std::size_t(by * kBuckets + bx)])
+          if (seenBy[area] != stamp) {
+            seenBy[area] = stamp;
+            visit(area);
+          }
+  }
+
+ private:
+  static constexpr int kBuckets = 16;
+  int column(double x) const { return std::clamp(int(x / bucketWidth_), 0, kBuckets - 1); }
+  int row(double y) const { return std::clamp(int(y / bucketHeight_), 0, kBuckets - 1); }
+
+  int width_ = 0, height_ = 0, bucketWidth_ = 1, bucketHeight_ = 1;
+  std::array<std::vector<std::uint32_t>, kBuckets * kBuckets> buckets_;
+};
+
+}  // namespace
+
 std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
                                   LoadMetric metric) {
   std::vector<double> loads(areas.size(), 0.0);
-  int width = 0, height = 0;
-  for (const node::SampleRect& a : areas) {
-    width = std::max(width, a.x1);
-    height = std::max(height, a.y1);
-  }
-  for (std::size_t i = 0; i < areas.size(); ++i) {
-    const node::SampleRect& a = areas[i];
-    ScreenSegment piece;
-    for (const ScreenSegment& s : sample.segments) {
+  const AreaBuckets near(areas);
+  std::vector<std::uint64_t> seenBy(areas.size(), 0);
+  std::uint64_t stamp = 0;
+  // Segments in order, so every area sums its pieces in the order the sub-sampling found them.
+  for (const ScreenSegment& s : sample.segments) {
+    near.forAreasNear(s, seenBy, ++stamp, [&](std::uint32_t i) {
+      const node::SampleRect& a = areas[i];
+      ScreenSegment piece;
       // Half-open areas: a piece lying exactly on the far boundary belongs to the next area.
-      if (!clipSegment(s, a.x0, a.y0, a.x1, a.y1, metric, piece)) continue;
-      if (a.x1 < width && std::min(piece.x0, piece.x1) >= a.x1) continue;
-      if (a.y1 < height && std::min(piece.y0, piece.y1) >= a.y1) continue;
+      if (!clipSegment(s, a.x0, a.y0, a.x1, a.y1, metric, piece)) return;
+      if (a.x1 < near.width() && std::min(piece.x0, piece.x1) >= a.x1) return;
+      if (a.y1 < near.height() && std::min(piece.y0, piece.y1) >= a.y1) return;
       loads[i] += piece.weight * sample.raysPerSegment;
-    }
+    });
   }
   return loads;
 }

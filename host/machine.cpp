@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -16,6 +18,7 @@
 #include "host/machine_engine.h"
 #include "host/machine_checks.h"
 #include "host/machine_progress.h"
+#include "host/parallel_for.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
 #include "host/box_tree.h"
@@ -84,24 +87,20 @@ node::LightSources rearLightSourcesOf(const std::vector<std::uint32_t>& rear,
   return withCorners(sources, view);
 }
 
-// Calls visit(p) for p in [0, processors) on all cores, with std::thread, whose join ThreadSanitizer sees
-// (oneTBB's, in Debian's uninstrumented build, it does not, and the host's later reads were reported).
-template <class Visit>
-void forEachProcessor(int processors, Visit&& visit) {
-  const int workers = std::max(1, std::min(processors, int(std::thread::hardware_concurrency())));
-  std::vector<std::jthread> threads;
-  for (int w = 0; w < workers; ++w)
-    threads.emplace_back([&, w] {
-      for (int p = w; p < processors; p += workers) visit(p);
-    });
+// The lists a processor's cells index, rewritten into its database's local indices.
+std::vector<std::vector<std::uint32_t>*> cellListsOf(node::NodeSetup& setup) {
+  return {&setup.objects, &setup.rearObjects};
 }
 
-// Every object list of a processor's setup.
-std::vector<std::vector<std::uint32_t>*> objectListsOf(node::NodeSetup& setup) {
-  std::vector<std::vector<std::uint32_t>*> lists{&setup.objects, &setup.rearObjects};
-  for (auto& objects : setup.lightObjects) lists.push_back(&objects);
-  for (auto& objects : setup.rearLightObjects) lists.push_back(&objects);
-  return lists;
+// What the light volumes add to a processor (3.7.2), for its report: their objects summed over the lights,
+// and how many of those its region's own objects do not already include (all lists ascending).
+void countLightObjects(const std::vector<std::vector<std::uint32_t>>& lightObjects, node::NodeSetup& setup) {
+  for (const std::vector<std::uint32_t>& objects : lightObjects) {
+    setup.lightObjects += objects.size();
+    std::size_t inRegion = 0;
+    for (std::uint32_t o : setup.objects) inRegion += std::binary_search(objects.begin(), objects.end(), o);
+    setup.extraLightObjects += objects.size() - inRegion;
+  }
 }
 
 // A processor needing most of the scene holds all of it, the copy every such processor shares: an object
@@ -118,26 +117,36 @@ bool holdsWholeScene(const std::vector<std::uint32_t>& held, const core::Scene& 
 // of them).
 void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::vector<std::uint32_t>>& held,
                    const core::Scene& scene, const std::vector<node::EyeBox>& boxes) {
-  std::map<std::vector<std::uint32_t>, std::shared_ptr<const node::RegionDatabase>> byObjects;
+  // The distinct sets in the order processors first name them, each copied once, on all cores.
+  auto bySet = [](const std::vector<std::uint32_t>* a, const std::vector<std::uint32_t>* b) { return *a < *b; };
+  std::map<const std::vector<std::uint32_t>*, std::size_t, decltype(bySet)> distinct(bySet);
+  std::vector<std::size_t> setOf(setups.size());
+  std::vector<const std::vector<std::uint32_t>*> sets;
   for (std::size_t p = 0; p < setups.size(); ++p) {
-    std::shared_ptr<const node::RegionDatabase>& database = byObjects[held[p]];
-    if (!database)
-      database = std::make_shared<const node::RegionDatabase>(node::regionDatabaseOf(scene, boxes, held[p]));
-    setups[p].database = database;
+    const auto [at, added] = distinct.try_emplace(&held[p], sets.size());
+    if (added) sets.push_back(&held[p]);
+    setOf[p] = at->second;
   }
-  forEachProcessor(int(setups.size()), [&](int p) {
+  std::vector<std::shared_ptr<const node::RegionDatabase>> databases(sets.size());
+  parallelFor(int(sets.size()), [&](int d) {
+    databases[std::size_t(d)] =
+        std::make_shared<const node::RegionDatabase>(node::regionDatabaseOf(scene, boxes, *sets[std::size_t(d)]));
+  });
+  for (std::size_t p = 0; p < setups.size(); ++p) setups[p].database = databases[setOf[p]];
+  parallelFor(int(setups.size()), [&](int p) {
     node::NodeSetup& setup = setups[std::size_t(p)];
-    node::toLocalIndices(*setup.database, objectListsOf(setup));
+    node::toLocalIndices(*setup.database, cellListsOf(setup));
   });
 }
 
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
-std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core::View& view,
+std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const core::View& view,
                                            const node::RegionMap& regions, const node::ScreenLines& lines,
                                            const std::vector<node::EyeBox>& boxes,
                                            const MachineSettings& machine) {
+  const core::Scene& scene = shading.scene();
   std::vector<std::uint32_t> rear;
   for (std::uint32_t o = 0; o < boxes.size(); ++o)
     if (node::reachesBehindEye(boxes[o])) rear.push_back(o);
@@ -151,17 +160,19 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
   const BoxTree inWorld(world);
   std::vector<std::vector<std::uint32_t>> rearLightObjects;
   node::LightSources rearSources;
-  if (lightVolumes) {
+  // Eye rays meet objects only in front of the eye: without reflected or refracted rays, no light ray starts
+  // behind it.
+  if (lightVolumes && shading.spawnsSecondaryRays()) {
     rearSources = rearLightSourcesOf(rear, boxes, view);
     for (const core::Light& light : scene.lights)
       rearLightObjects.push_back(
           objectsInLightVolume(machine.lightRays, light.position, rearSources, inWorld));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
-  std::vector<std::vector<std::uint32_t>> held(setups.size());
+  std::vector<std::vector<std::uint32_t>> heldBy(setups.size());
   std::vector<std::uint32_t> everyObject(scene.objects.size());
   std::iota(everyObject.begin(), everyObject.end(), 0u);
-  forEachProcessor(regions.processors(), [&](int p) {
+  parallelFor(regions.processors(), [&](int p) {
     const node::SampleRect a = regions.areaOf(p);
     const node::ColumnSlab region{
         lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0, core::kInfinity};
@@ -174,38 +185,59 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Scene& scene, const core:
     setup.objects =
         inEyeFrame.query([&](const core::Box& b) { return node::mayTouch(node::EyeBox{b.lo, b.hi}, region); });
     setup.lightRays = machine.lightRays;
+    // The light volumes' objects only decide what the processor holds: its database's BVH finds them.
+    std::vector<std::vector<std::uint32_t>*> held{&setup.objects, &setup.rearObjects};
+    std::vector<std::vector<std::uint32_t>> lightObjects;
     if (lightVolumes) {
       setup.lightSources = lightSourcesOf(region, setup.objects, boxes, view);
       for (const core::Light& light : scene.lights)
-        setup.lightObjects.push_back(
-            objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
+        lightObjects.push_back(objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
       setup.rearLightSources = rearSources;
-      setup.rearLightObjects = rearLightObjects;
+      countLightObjects(lightObjects, setup);
+      for (auto* lists : {&lightObjects, &rearLightObjects})
+        for (std::vector<std::uint32_t>& objects : *lists) held.push_back(&objects);
     }
-    held[std::size_t(p)] = node::heldObjectsOf(objectListsOf(setup), scene.objects.size());
-    if (holdsWholeScene(held[std::size_t(p)], scene, machine)) held[std::size_t(p)] = everyObject;
+    heldBy[std::size_t(p)] = node::heldObjectsOf(held, scene.objects.size());
+    if (holdsWholeScene(heldBy[std::size_t(p)], scene, machine)) heldBy[std::size_t(p)] = everyObject;
     setups[std::size_t(p)] = std::move(setup);
   });
-  giveDatabases(setups, held, scene, boxes);
+  giveDatabases(setups, heldBy, scene, boxes);
   return setups;
 }
 
 // The iPSC was a hypercube: number the regions so that neighbours are few hops apart (3.7.1: "it is
 // important to suitably map this graph on the hypercube topology"). Gray codes embed the uniform grid with
 // one hop per edge; the BSP's adjacency graph gets the greedy heuristic.
-void mapOntoHypercube(const node::RegionMap& regions, const MachineSettings& machine, MachineReport& out) {
+struct HypercubeEmbedding {
+  std::vector<std::uint32_t> nodeOfProcessor;
+  Dilation dilation;
+  std::size_t adjacencyEdges = 0;
+  double seconds = 0;
+};
+
+HypercubeEmbedding embedInHypercube(const node::RegionMap& regions, const MachineSettings& machine) {
+  const Clock::time_point start = Clock::now();
   AdjacencyGraph graph;
   graph.vertices = regions.processors();
   for (int p = 0; p < regions.processors(); ++p)
     for (int n : regions.neighbours(p))
       if (n > p) graph.edges.emplace_back(p, n);
+  HypercubeEmbedding out;
   out.adjacencyEdges = graph.edges.size();
-  out.hypercubeNode = machine.balance == Balance::Uniform ? grayCodeGridMapping(machine.rows, machine.columns)
-                                                          : mapToHypercube(graph);
-  const Dilation d = dilationOf(graph, out.hypercubeNode);
-  out.dilationMean = d.mean;
-  out.dilationMax = d.max;
-  out.hypercubeDimension = d.dimension;
+  out.nodeOfProcessor = machine.balance == Balance::Uniform ? grayCodeGridMapping(machine.rows, machine.columns)
+                                                            : mapToHypercube(graph);
+  out.dilation = dilationOf(graph, out.nodeOfProcessor);
+  out.seconds = secondsSince(start);
+  return out;
+}
+
+void recordEmbedding(HypercubeEmbedding embedding, MachineReport& out) {
+  out.hypercubeNode = std::move(embedding.nodeOfProcessor);
+  out.dilationMean = embedding.dilation.mean;
+  out.dilationMax = embedding.dilation.max;
+  out.hypercubeDimension = embedding.dilation.dimension;
+  out.adjacencyEdges = embedding.adjacencyEdges;
+  out.preprocessing.mapping = embedding.seconds;
 }
 
 // Phase 2 (3.1, 3.7.1): a uniform grid, or a BSP of the sub-sampled load into areas of equal estimate.
@@ -265,18 +297,36 @@ struct HostPreparation {
   std::vector<node::NodeSetup> setups;
 };
 
+// The time since the last lap, and a new lap.
+class Laps {
+ public:
+  double next() {
+    const Clock::time_point now = Clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  Clock::time_point last_ = Clock::now();
+};
+
 HostPreparation prepare(const core::Scene& scene, const core::View& view, const RenderSettings& settings,
-                        const MachineSettings& machine, Progress& progress) {
+                        const MachineSettings& machine, Progress& progress, PreprocessingSeconds& seconds) {
+  Laps laps;
   const core::Whitted shading(scene, settings.shading);
   LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
                                   machine.lightRays != node::LightRayMode::Messages);
+  seconds.sampling = laps.next();
+  node::MachineContext context{view, settings.shading, partition(view, load, machine)};
+  seconds.partitioning = laps.next();
+  progress.phase("pruning");
   std::vector<node::EyeBox> boxes;
   const double sceneExtent = 2 * scene.largestCoordinate();
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
-  node::MachineContext context{view, settings.shading, partition(view, load, machine)};
-  progress.phase("pruning");
-  std::vector<node::NodeSetup> setups = pruneDatabase(scene, view, context.regions, context.lines(), boxes,
+  std::vector<node::NodeSetup> setups = pruneDatabase(shading, view, context.regions, context.lines(), boxes,
                                                       machine);
+  seconds.pruning = laps.next();
   return {std::move(load), std::move(context), std::move(setups)};
 }
 
@@ -286,9 +336,11 @@ std::vector<node::SampleRect> areasOf(const node::RegionMap& regions) {
   return areas;
 }
 
-// When the synthesis phase started (preprocessing ends there: each node subdivides its region first).
+// When the run started, when the engine was given the processors, and when the synthesis phase started
+// (preprocessing ends there: each node subdivides its region first).
 struct SynthesisClock {
   Clock::time_point start;
+  Clock::time_point launch;
   Clock::time_point synthesis;
 };
 
@@ -297,14 +349,16 @@ struct SynthesisClock {
 template <class Real>
 MachineRun launch(HostPreparation& host, const MachineSettings& machine,
                   const std::vector<std::uint32_t>& cubeNode, Accumulator& accumulator, Progress& progress,
-                  SynthesisClock& clock) {
+                  SynthesisClock& clock, const std::function<void()>& alongsideSynthesis) {
   progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
+  clock.launch = Clock::now();
   const MachineProgress work(expectedWork(areasOf(host.context.regions), host.load));
   EngineHooks hooks;
   hooks.host = &accumulator;
   hooks.synthesisStarts = [&] {
     clock.synthesis = Clock::now();
     progress.phase("tracing", work.workOf({}).expected);
+    alongsideSynthesis();
   };
   hooks.progress = [&](const std::vector<std::uint64_t>& evaluated) {
     const MachineProgress::Work w = work.workOf(evaluated);
@@ -318,19 +372,29 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
 template <class Real>
 RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& settings,
                              const MachineSettings& machine, MachineReport* report) {
-  SynthesisClock clock{Clock::now(), Clock::now()};
+  SynthesisClock clock{Clock::now(), Clock::now(), Clock::now()};
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
   requireMachineFits(machine, view);  // phase 1
   Progress progress("partitioning", 0, settings.progress);
-  HostPreparation host = prepare(scene, view, settings, machine, progress);
-
   MachineReport local;
   MachineReport& out = report ? *report : local;
   out.settings = machine;
-  mapOntoHypercube(host.context.regions, machine, out);
+  HostPreparation host = prepare(scene, view, settings, machine, progress, out.preprocessing);
+
+  // Only the emulated machine's links need the embedding; otherwise it is worked out during the synthesis.
+  std::future<HypercubeEmbedding> embedding;
+  auto embed = [&] {
+    embedding = std::async(std::launch::async, [&] { return embedInHypercube(host.context.regions, machine); });
+  };
+  if (machine.emulate) {
+    embed();
+    recordEmbedding(embedding.get(), out);
+  }
   Accumulator accumulator(view);
-  MachineRun run = launch<Real>(host, machine, out.hypercubeNode, accumulator, progress, clock);
+  MachineRun run = launch<Real>(host, machine, out.hypercubeNode, accumulator, progress, clock,
+                                machine.emulate ? std::function<void()>([] {}) : std::function<void()>(embed));
+  if (!machine.emulate) recordEmbedding(embedding.get(), out);
 
   RenderResult result;
   result.mode = "machine";
@@ -339,6 +403,7 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   result.image = accumulator.frame().resolve(view);
   result.preprocessSeconds = std::chrono::duration<double>(clock.synthesis - clock.start).count();
   result.traceSeconds = secondsSince(clock.synthesis);
+  out.preprocessing.cells = std::chrono::duration<double>(clock.synthesis - clock.launch).count();
   out.contributionsAccumulated = accumulator.count();
   reportRun(std::move(run), estimateLoads(areasOf(host.context.regions), host.load, machine.loadMetric),
             host.load, sizeof(node::BasicRayMessage<Real>), result, out);

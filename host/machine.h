@@ -86,8 +86,20 @@ struct DistributedRun {
   std::vector<RankReport> ranks;  // rank 0 first
 };
 
+// Where the preprocessing time goes (3.2 steps 1-2, 3.7.1), in seconds.
+struct PreprocessingSeconds {
+  double sampling = 0;      // the sub-sampled rays (3.7.1)
+  double partitioning = 0;  // the grid, or the BSP of the sub-sampled load
+  double pruning = 0;       // each region's database and light volumes (3.2 step 1, 3.7.2)
+  double cells = 0;         // the processors building their structures, in the engine (3.2 step 2)
+  // Embedding the regions in the hypercube (3.7.1): before the run when emulating the machine, whose links
+  // need it; otherwise during the synthesis, on a thread of its own, and not part of the preprocessing.
+  double mapping = 0;
+};
+
 struct MachineReport {
   MachineSettings settings;
+  PreprocessingSeconds preprocessing;
   // Figure 15: per processor, the load estimated from the sub-sampled rays (scaled to the image), in the
   // metric used to partition; and how many rays were sub-sampled.
   std::vector<double> estimatedLoad;

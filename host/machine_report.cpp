@@ -69,6 +69,12 @@ std::string machineTable(const MachineReport& report) {
       "dilation mean {:.2f} max {}\n",
       report.tokenRounds, report.tokenPasses, report.hypercubeDimension, report.adjacencyEdges,
       report.dilationMean, report.dilationMax);
+  const PreprocessingSeconds& pre = report.preprocessing;
+  text += fmt::format(
+      "  preprocessing: sampling {:.3f} s, partitioning {:.3f} s, pruning {:.3f} s, cells {:.3f} s; hypercube "
+      "mapping {:.3f} s{}\n",
+      pre.sampling, pre.partitioning, pre.pruning, pre.cells, pre.mapping,
+      report.settings.emulate ? "" : " (during the synthesis)");
   text += fmt::format(
       "  load ({}, {} metric, sub-sampling {}x{}): rays processed max/mean {:.2f} min/mean {:.2f}; cost "
       "max/mean "
@@ -145,6 +151,13 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"loadMetric", report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays"},
           {"subsampleWindow", report.settings.subsampleWindow},
           {"subsampledRays", report.subsampledRays},
+          {"preprocessingSeconds",
+           {{"sampling", report.preprocessing.sampling},
+            {"partitioning", report.preprocessing.partitioning},
+            {"pruning", report.preprocessing.pruning},
+            {"cells", report.preprocessing.cells},
+            {"mapping", report.preprocessing.mapping},
+            {"mappingDuringSynthesis", !report.settings.emulate}}},
           {"hypercube",
            {{"dimension", report.hypercubeDimension},
             {"nodeOfProcessor", report.hypercubeNode},

@@ -118,17 +118,6 @@ node::LightSources readLightSources(WireReader& in) {
   return sources;
 }
 
-void writeObjectLists(WireWriter& out, const std::vector<std::vector<std::uint32_t>>& lists) {
-  out.value(std::uint64_t(lists.size()));
-  for (const auto& list : lists) out.vector(list);
-}
-
-std::vector<std::vector<std::uint32_t>> readObjectLists(WireReader& in) {
-  std::vector<std::vector<std::uint32_t>> lists(in.value<std::uint64_t>());
-  for (auto& list : lists) list = in.vector<std::uint32_t>();
-  return lists;
-}
-
 void writeDatabase(WireWriter& out, const node::RegionDatabase& database) {
   writeScene(out, database.scene);
   out.vector(database.globalIds);
@@ -163,9 +152,9 @@ void writeSetup(WireWriter& out, const node::NodeSetup& setup, const DatabaseTab
   out.vector(setup.rearObjects);
   out.value(setup.lightRays);
   writeLightSources(out, setup.lightSources);
-  writeObjectLists(out, setup.lightObjects);
   writeLightSources(out, setup.rearLightSources);
-  writeObjectLists(out, setup.rearLightObjects);
+  out.value(std::uint64_t(setup.lightObjects));
+  out.value(std::uint64_t(setup.extraLightObjects));
 }
 
 node::NodeSetup readSetup(WireReader& in,
@@ -181,9 +170,9 @@ node::NodeSetup readSetup(WireReader& in,
   setup.rearObjects = in.vector<std::uint32_t>();
   setup.lightRays = in.value<node::LightRayMode>();
   setup.lightSources = readLightSources(in);
-  setup.lightObjects = readObjectLists(in);
   setup.rearLightSources = readLightSources(in);
-  setup.rearLightObjects = readObjectLists(in);
+  setup.lightObjects = in.value<std::uint64_t>();
+  setup.extraLightObjects = in.value<std::uint64_t>();
   return setup;
 }
 

@@ -36,17 +36,8 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.bvh = structure_ == CellStructure::Bvh;
   if (stats_.bvh || setup_.lightRays != LightRayMode::Messages)
     databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading);
-  if (setup_.lightRays != LightRayMode::Messages) {
-    std::vector<char> inCells(scene_.objects.size(), 0);
-    for (std::uint32_t o : setup_.objects) inCells[o] = 1;
-    for (const auto& objects : setup_.lightObjects) {
-      stats_.lightObjects += objects.size();
-      for (std::uint32_t o : objects) stats_.extraLightObjects += inCells[o] ? 0 : 1;
-    }
-  }
-  // What only the construction needed: the light lists (the BVH holds their objects).
-  setup_.lightObjects = {};
-  setup_.rearLightObjects = {};
+  stats_.lightObjects = setup_.lightObjects;
+  stats_.extraLightObjects = setup_.extraLightObjects;
 }
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.

@@ -38,14 +38,16 @@ struct NodeSetup {
   std::shared_ptr<const RegionDatabase> database;  // the only objects this processor holds
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
   std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
-  // 3.7.2: with light cones or pyramids, the objects each light's rays from this region can meet, and the
-  // eye-frame box those rays start in; light rays starting elsewhere (behind the eye) travel as messages.
+  // 3.7.2: with light cones or pyramids, the eye-frame box this region's light rays start in; the database
+  // holds every object their light volumes meet, and such rays are traced where they start; light rays
+  // starting elsewhere travel as messages.
   LightRayMode lightRays = LightRayMode::Messages;
   LightSources lightSources;
-  std::vector<std::vector<std::uint32_t>> lightObjects;  // per light
   // The same for light rays starting behind the eye (on a rear object), identical for every processor.
   LightSources rearLightSources;
-  std::vector<std::vector<std::uint32_t>> rearLightObjects;  // per light
+  // What the host found for the report: the light volumes' objects summed over the lights, and how many of
+  // those are not among the region's objects.
+  std::size_t lightObjects = 0, extraLightObjects = 0;
 };
 
 struct NodeStats {

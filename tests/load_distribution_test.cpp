@@ -74,6 +74,54 @@ TEST(LoadEstimate, SplitSegmentsCountOnBothSides) {
   EXPECT_DOUBLE_EQ(cost[0], 4.0);
 }
 
+// Every area's load, clipping every segment against it in order: what estimateLoads must equal exactly
+// (it only skips the areas far from a segment).
+std::vector<double> loadsAgainstEveryArea(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
+                                          LoadMetric metric) {
+  int width = 0, height = 0;
+  for (const node::SampleRect& a : areas) {
+    width = std::max(width, a.x1);
+    height = std::max(height, a.y1);
+  }
+  std::vector<double> loads(areas.size(), 0.0);
+  for (std::size_t i = 0; i < areas.size(); ++i) {
+    const node::SampleRect& a = areas[i];
+    for (const ScreenSegment& s : sample.segments) {
+      ScreenSegment piece;
+      if (!clipSegment(s, a.x0, a.y0, a.x1, a.y1, metric, piece)) continue;
+      if (a.x1 < width && std::min(piece.x0, piece.x1) >= a.x1) continue;
+      if (a.y1 < height && std::min(piece.y0, piece.y1) >= a.y1) continue;
+      loads[i] += piece.weight * sample.raysPerSegment;
+    }
+  }
+  return loads;
+}
+
+// Random segments, points, and segments lying on the areas' boundaries and corners (integer coordinates):
+// the estimate is bit for bit the one that clips every segment against every area.
+TEST(LoadEstimate, NearbyAreasGiveExactlyTheLoadsOfEveryArea) {
+  for (int side : {7, 100, 512}) {
+    LoadSample sample = randomSegments(3000, side, side, unsigned(side) + 1);
+    std::mt19937 random{unsigned(side)};
+    std::uniform_int_distribution<int> grid(0, side);
+    for (int i = 0; i < 2000; ++i) {
+      const double x = grid(random), y = grid(random);
+      sample.segments.push_back(ScreenSegment{x, y, x, y, 1.0 + i % 3});                   // a point
+      sample.segments.push_back(ScreenSegment{x, y, double(grid(random)), y, 2.0});       // along a row
+      sample.segments.push_back(ScreenSegment{x, y, x, double(grid(random)), 0.5});       // along a column
+    }
+    sample.raysPerSegment = 64;
+    for (int p : {1, 3, 16, 64}) {
+      if (p > side * side) continue;
+      for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost}) {
+        const auto areas = bspPartition(side, side, p, sample, metric);
+        EXPECT_EQ(estimateLoads(areas, sample, metric), loadsAgainstEveryArea(areas, sample, metric))
+            << side << " px, " << p << " processors";
+      }
+    }
+  }
+}
+
 MachineSettings bspMachine(int processors, LoadMetric metric, int window, node::LightRayMode lights,
                            std::size_t capacity = 8) {
   MachineSettings m;

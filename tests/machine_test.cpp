@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/balls.h"
+#include "host/machine_report.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "core/view.h"
@@ -274,6 +275,42 @@ TEST(MachineTest, ReflectionsBehindTheEyeMatchReference) {
     }
 }
 
+// A ground reaching behind the eye, a sphere in front, a light far in front, and a row of pebbles above
+// the view, off every segment from a visible point to the light but on segments from the ground behind the
+// eye to it; `groundKs` makes the ground a mirror.
+std::string pebblesAboveTheView(double groundKs) {
+  std::string nff =
+      "b 0.1 0.1 0.3\nv\nfrom 0 1 5\nat 0 1 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 32 32\n"
+      "l 0 10 -20\n";
+  nff += "f 0.8 0.8 0.8 0.8 " + std::to_string(groundKs) + " 10 0 1\n";
+  nff += "p 4\n-20 0 -20\n-20 0 20\n20 0 20\n20 0 -20\n";
+  nff += "f 0.9 0.3 0.3 0.9 0 10 0 1\ns 0 1 0 1\n";
+  for (int i = 0; i < 12; ++i) nff += "s " + std::to_string(-3 + 0.5 * i) + " 4 0 0.2\n";
+  return nff;
+}
+
+// Without reflected or refracted rays, only eye rays meet objects, always in front of the eye: the parts of
+// objects behind it start no light ray, so their light volumes add nothing to what a processor holds. With
+// a mirror ground they do (light rays start on the ground behind the eye, where reflections land).
+TEST(MachineTest, MatteScenesHoldNoLightVolumeBehindTheEye) {
+  const int side = sanitized() ? 16 : 32;
+  const RenderSettings settings = settingsFor(side);
+  std::size_t held[2] = {};
+  for (int mirror = 0; mirror < 2; ++mirror) {
+    const core::Scene scene = core::parseNff(pebblesAboveTheView(mirror ? 0.5 : 0), "pebbles.nff");
+    const core::View view(scene.camera, side, side, settings.sampling);
+    ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[0], view, 2 * scene.largestCoordinate())));
+    const std::string label = mirror ? "pebbles, mirror ground" : "pebbles, matte ground";
+    const RenderResult reference = renderReference(scene, settings);
+    MachineReport report;
+    const RenderResult machine =
+        renderMachineWatched(scene, settings, machineFor({4, 4}, 8, node::LightRayMode::Pyramid), report, label);
+    expectMachineMatchesReference(reference, machine, report, label);
+    for (const ProcessorReport& p : report.processors) held[mirror] += p.node.heldObjects;
+  }
+  EXPECT_LT(held[0], held[1]);
+}
+
 TEST(MachineTest, BallsFloorReachesBehindTheEye) {
   // balls: eye at (2.1, 1.3, 1.7), floor polygon +-12 at z = -0.5: most of the floor is behind the eye plane.
   const core::Scene scene = core::makeBalls(2);
@@ -392,6 +429,24 @@ TEST(MachineTest, EyeInsideRefractingSphereOneProcessorMatchesReference) {
 
 // ---------------------------------------------------------------------------------------------------------
 // 8: a grid the sample grid cannot feed is a user error, named by its option.
+
+// The preprocessing time is accounted for phase by phase (3.2 steps 1-2, 3.7.1): the phases lie inside it,
+// one after the other; the hypercube embedding is worked out during the synthesis unless emulating, and the
+// report says which.
+TEST(MachineTest, PreprocessingPhasesLieWithinThePreprocessingTime) {
+  const core::Scene scene = core::makeBalls(2);
+  MachineSettings machine = machineFor({4, 4}, 8);
+  machine.balance = Balance::Bsp;
+  MachineReport report;
+  const RenderResult result = renderMachine(scene, settingsFor(32), machine, &report);
+  const PreprocessingSeconds& pre = report.preprocessing;
+  for (double phase : {pre.sampling, pre.partitioning, pre.pruning, pre.cells, pre.mapping}) EXPECT_GT(phase, 0);
+  EXPECT_LE(pre.sampling + pre.partitioning + pre.pruning + pre.cells, result.preprocessSeconds);
+  const nlohmann::json json = machineJson(report).at("preprocessingSeconds");
+  EXPECT_EQ(json.at("pruning").get<double>(), pre.pruning);
+  EXPECT_TRUE(json.at("mappingDuringSynthesis").get<bool>());
+  EXPECT_NE(machineTable(report).find("hypercube mapping"), std::string::npos);
+}
 
 TEST(MachineTest, MoreProcessorsThanSampleRowsOrColumnsThrows) {
   const core::Scene scene = core::makeBalls(1);

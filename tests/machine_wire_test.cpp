@@ -40,10 +40,11 @@ node::NodeSetup setupOf(const core::Scene& scene, const node::MachineContext& co
   s.lightRays = node::LightRayMode::Pyramid;
   s.lightSources.eyeBox.extend(core::Vec3(1, 2, 3));
   s.lightSources.corners = {core::Vec3(4, 5, 6)};
-  s.lightObjects = {{2, 3}, {}, {5}};
-  s.rearLightObjects = {{0}, {0}, {}};
-  std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects, &s.lightObjects[0], &s.lightObjects[2],
-                                         &s.rearLightObjects[0], &s.rearLightObjects[1]};
+  // Light volumes holding objects 2, 3 and 5 besides the region's (only their counts travel).
+  std::vector<std::uint32_t> lightObjects{2, 3, 5};
+  s.lightObjects = 3;
+  s.extraLightObjects = 3;
+  std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects, &lightObjects};
   s.database = std::make_shared<const node::RegionDatabase>(node::gatherRegionDatabase(scene, boxes, lists));
   return s;
 }
@@ -114,7 +115,7 @@ TEST(MachineWireTest, JobComesBackAsItLeft) {
   EXPECT_TRUE(sameBytes(s.lightSources.eyeBox, setup.lightSources.eyeBox));
   EXPECT_EQ(s.lightSources.corners, setup.lightSources.corners);
   EXPECT_EQ(s.lightObjects, setup.lightObjects);
-  EXPECT_EQ(s.rearLightObjects, setup.rearLightObjects);
+  EXPECT_EQ(s.extraLightObjects, setup.extraLightObjects);
   EXPECT_EQ(s.database->globalIds, setup.database->globalIds);
   ASSERT_EQ(s.database->eyeBoxes.size(), setup.database->eyeBoxes.size());
   for (std::size_t k = 0; k < s.database->eyeBoxes.size(); ++k)

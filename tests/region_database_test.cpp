@@ -53,7 +53,9 @@ TEST_F(RegionDatabaseTest, ListsNameTheSameObjectsInLocalIndices) {
                 std::get<core::Sphere>(scene_.objects[global].shape).center);
       EXPECT_EQ(db.eyeBoxes[region[i]].lo, boxes_[global].lo);
     }
-    if (!named.empty()) EXPECT_EQ(db.globalIds[rear[0]], named[0]);
+    if (!named.empty()) {
+      EXPECT_EQ(db.globalIds[rear[0]], named[0]);
+    }
   }
 }
 

@@ -45,5 +45,17 @@ TEST(SceneFeatures, ShadingKnowsWhetherLightRaysMustMultiplyTransmissions) {
   EXPECT_TRUE(Whitted(gears, {}).sceneTransmits());
 }
 
+// Reflected or refracted rays exist only with Ks or T somewhere and a depth above one: otherwise only eye
+// rays meet objects (so no light ray starts behind the eye, and the machine prunes accordingly).
+TEST(SceneFeatures, ShadingKnowsWhetherRaysOtherThanEyeRaysMeetObjects) {
+  const Scene balls = makeBalls(1), gears = shipped("gears1.nff"), tree = shipped("tree1.nff");
+  EXPECT_TRUE(Whitted(balls, {}).spawnsSecondaryRays());  // reflective spheres
+  EXPECT_TRUE(Whitted(gears, {}).spawnsSecondaryRays());  // transmitting gears
+  EXPECT_FALSE(Whitted(tree, {}).spawnsSecondaryRays());  // matte tree and ground
+  ShadingOptions eyeRaysOnly;
+  eyeRaysOnly.maxDepth = 1;
+  EXPECT_FALSE(Whitted(balls, eyeRaysOnly).spawnsSecondaryRays());
+}
+
 }  // namespace
 }  // namespace raycube::core
