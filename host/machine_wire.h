@@ -15,70 +15,41 @@
 
 #include "core/precision.h"
 #include "host/machine.h"
+#include "host/wire_codec.h"
 #include "node/logical_processor.h"
 
 namespace raycube::host {
 
-// Bytes in the machine's own layout: every rank runs the same binary on the same kind of host.
-class WireWriter {
- public:
-  void bytes(const void* data, std::size_t n) {
-    if (n == 0) return;  // data may be null (an empty vector's)
-    const char* p = static_cast<const char*>(data);
-    out_.insert(out_.end(), p, p + n);
-  }
-  template <class T>
-  void value(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes(&v, sizeof v);
-  }
-  template <class T>
-  void vector(const std::vector<T>& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    value(std::uint64_t(v.size()));
-    bytes(v.data(), v.size() * sizeof(T));
-  }
-  void string(const std::string& s) { vector(std::vector<char>(s.begin(), s.end())); }
-  std::vector<char> take() { return std::move(out_); }
-
- private:
-  std::vector<char> out_;
+// A message being written, in memory.
+struct ByteBuffer {
+  std::vector<char> bytes;
+  void write(const char* data, std::size_t n) { bytes.insert(bytes.end(), data, data + n); }
 };
 
-class WireReader {
+class WireWriter : public WireEncoder<ByteBuffer> {
  public:
-  explicit WireReader(std::span<const char> in) : in_(in) {}
-  void bytes(void* data, std::size_t n) {
-    if (n > in_.size() - at_) throw std::runtime_error("a message between ranks was cut short");
-    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not see
+  std::vector<char> take() { return std::move(sink().bytes); }
+};
+
+// A message received, read in order.
+class ByteSpan {
+ public:
+  explicit ByteSpan(std::span<const char> in) : in_(in) {}
+  void read(char* data, std::size_t n) {
+    expect(n);
     std::memcpy(data, in_.data() + at_, n);
     at_ += n;
   }
-  template <class T>
-  T value() {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::array<char, sizeof(T)> raw;  // T need not be default-constructible (core::View)
-    bytes(raw.data(), raw.size());
-    return std::bit_cast<T>(raw);
-  }
-  template <class T>
-  std::vector<T> vector() {
-    const auto n = value<std::uint64_t>();
-    if (n > (in_.size() - at_) / std::max<std::size_t>(1, sizeof(T)))
-      throw std::runtime_error("a message between ranks was cut short");
-    std::vector<T> v(n);
-    bytes(v.data(), n * sizeof(T));
-    return v;
-  }
-  std::string string() {
-    const auto chars = vector<char>();
-    return std::string(chars.begin(), chars.end());
+  void expect(std::size_t n) const {
+    if (n > in_.size() - at_) throw std::runtime_error("a message between ranks was cut short");
   }
 
  private:
   std::span<const char> in_;
   std::size_t at_ = 0;
 };
+
+using WireReader = WireDecoder<ByteSpan>;
 
 // How a rank runs its share of a render.
 struct JobSettings {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "host/wire_codec.h"
 #include "queues/simgrid_interconnect.h"
 
 namespace raycube::host {
@@ -22,67 +23,43 @@ static_assert(std::is_trivially_copyable_v<ProcessorReport>);
 // ---- The child's results travel to the parent through a pipe, as tagged records.
 enum class Record : std::uint8_t { SynthesisStarts, Contributions, Progress, Reports, Failure };
 
-class PipeWriter {
+// The child's end of the pipe: it exits when the parent is gone.
+class PipeSink {
  public:
-  explicit PipeWriter(int fd) : fd_(fd) {}
-  void bytes(const void* data, std::size_t n) {
-    const char* p = static_cast<const char*>(data);
+  explicit PipeSink(int fd) : fd_(fd) {}
+  void write(const char* data, std::size_t n) {
     while (n > 0) {
-      const ssize_t w = ::write(fd_, p, n);
+      const ssize_t w = ::write(fd_, data, n);
       if (w <= 0) _exit(3);  // the parent is gone
-      p += w;
+      data += w;
       n -= std::size_t(w);
     }
   }
-  template <class T>
-  void value(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes(&v, sizeof v);
-  }
-  template <class T>
-  void vector(const std::vector<T>& v) {
-    value(std::uint64_t(v.size()));
-    bytes(v.data(), v.size() * sizeof(T));
-  }
-  void string(const std::string& s) { vector(std::vector<char>(s.begin(), s.end())); }
 
  private:
   int fd_;
 };
 
-class PipeReader {
+// The parent's end: the simulation's results, until the child closes it.
+class PipeSource {
  public:
-  explicit PipeReader(int fd) : fd_(fd) {}
-  bool bytes(void* data, std::size_t n) {
-    char* p = static_cast<char*>(data);
+  explicit PipeSource(int fd) : fd_(fd) {}
+  void read(char* data, std::size_t n) {
     while (n > 0) {
-      const ssize_t r = ::read(fd_, p, n);
-      if (r <= 0) return false;
-      p += r;
+      const ssize_t r = ::read(fd_, data, n);
+      if (r <= 0) throw std::runtime_error("the simulation ended before sending all its results");
+      data += r;
       n -= std::size_t(r);
     }
-    return true;
   }
-  template <class T>
-  T value() {
-    T v{};
-    if (!bytes(&v, sizeof v)) throw std::runtime_error("the simulation ended before sending its results");
-    return v;
-  }
-  template <class T>
-  std::vector<T> vector() {
-    std::vector<T> v(value<std::uint64_t>());
-    if (!bytes(v.data(), v.size() * sizeof(T))) throw std::runtime_error("the simulation's results were cut short");
-    return v;
-  }
-  std::string string() {
-    const auto chars = vector<char>();
-    return std::string(chars.begin(), chars.end());
-  }
+  void expect(std::size_t) const {}  // a pipe does not know what is left
 
  private:
   int fd_;
 };
+
+using PipeWriter = WireEncoder<PipeSink>;
+using PipeReader = WireDecoder<PipeSource>;
 
 // Contributions go to the parent in blocks, as they arrive at the simulated host, each followed by the
 // processors' progress (for the parent's progress line).
@@ -326,8 +303,7 @@ void simulate(SimulationInput in, PipeWriter& out) {
 // then the reports.
 MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
   for (;;) {
-    Record tag{};
-    if (!in.bytes(&tag, sizeof tag)) throw std::runtime_error("the simulation process ended without results");
+    const auto tag = in.value<Record>();
     if (tag == Record::SynthesisStarts) {
       if (hooks.synthesisStarts) hooks.synthesisStarts();
     } else if (tag == Record::Contributions) {
