@@ -7,6 +7,8 @@
 //   intersection_benchmark --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -132,6 +134,35 @@ void BM_NearestHit_GearFace_Outline(benchmark::State& state) {
   runNearestHit(state, Object{Polygon(face.vertices), 0, false}, face.rays);
 }
 
+// A regular convex polygon of `vertices` corners (radius 1, plane z = 0), and rays towards it from a ball of
+// radius 3 about the origin: where the fan of triangles stops paying against the banded outline.
+std::vector<Vec3> regularPolygon(int vertices) {
+  std::vector<Vec3> corners;
+  for (int k = 0; k < vertices; ++k) {
+    const double angle = 2 * 3.14159265358979323846 * k / vertices;
+    corners.emplace_back(std::cos(angle), std::sin(angle), 0.0);
+  }
+  return corners;
+}
+
+void BM_NearestHit_ConvexPolygon_Fan(benchmark::State& state) {
+  const std::vector<Vec3> corners = regularPolygon(int(state.range(0)));
+  const Object fan{Patch{corners, std::vector<Vec3>(corners.size(), Vec3(0, 0, 1))}, 0, false};
+  runNearestHit(state, fan, raysTowardsOrigin(1.0, 11));
+}
+
+void BM_NearestHit_ConvexPolygon_Outline(benchmark::State& state) {
+  const std::vector<Vec3> corners = regularPolygon(int(state.range(0)));
+  Polygon polygon(corners);
+  polygon.outline = std::make_shared<const PolygonOutline>(corners);
+  runNearestHit(state, Object{polygon, 0, false}, raysTowardsOrigin(1.0, 11));
+}
+
+// As a scene holds it: the fan up to kMostFanVertices corners, the outline beyond.
+void BM_NearestHit_ConvexPolygon(benchmark::State& state) {
+  runNearestHit(state, Object{Polygon(regularPolygon(int(state.range(0)))), 0, false}, raysTowardsOrigin(1.0, 11));
+}
+
 BENCHMARK(BM_NearestHit_SphereHit);
 BENCHMARK(BM_NearestHit_SphereMiss);
 BENCHMARK(BM_NearestHit_Quad);
@@ -139,6 +170,9 @@ BENCHMARK(BM_NearestHit_PatchTriangle);
 BENCHMARK(BM_NearestHit_Cone);
 BENCHMARK(BM_NearestHit_GearFace_Fan);
 BENCHMARK(BM_NearestHit_GearFace_Outline);
+BENCHMARK(BM_NearestHit_ConvexPolygon_Fan)->RangeMultiplier(2)->Range(3, 128);
+BENCHMARK(BM_NearestHit_ConvexPolygon_Outline)->RangeMultiplier(2)->Range(3, 128);
+BENCHMARK(BM_NearestHit_ConvexPolygon)->RangeMultiplier(2)->Range(3, 128);
 
 // balls2 (91 spheres and the floor) and its BVH, built once.
 struct Balls2 {

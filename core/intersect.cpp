@@ -90,7 +90,7 @@ TriangleHit<Real> hitFan(const std::vector<Vec3>& vertices, const BasicRay<Real>
   return best;
 }
 
-// A concave polygon: its plane, then the even-odd rule on its outline at the point met. The plane and t are
+// A polygon of more than three corners: its plane, then the even-odd rule on its outline at the point met. The plane and t are
 // in Real; the point's coordinates go to the outline as they are (a float converts exactly to double).
 template <class Real>
 Real hitOutline(const PolygonOutline& outline, const BasicRay<Real>& ray, Real tMax) {

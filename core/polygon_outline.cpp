@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace raycube::core {
 namespace {
@@ -93,25 +92,6 @@ bool PolygonOutline::contains(const Vec3& point) const {
   double x, y;
   planeCoordinates(point, x, y);
   return contains(x, y);
-}
-
-bool isConvex(const std::vector<Vec3>& vertices) {
-  const int dropped = droppedAxis(newellNormal(vertices));
-  const std::vector<Point2> p = projected(vertices, (dropped + 1) % 3, (dropped + 2) % 3);
-  const std::size_t n = p.size();
-  bool left = false, right = false;
-  double turning = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point2 &a = p[i], &b = p[(i + 1) % n], &c = p[(i + 2) % n];
-    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - b.x, vy = c.y - b.y;
-    const double cross = ux * vy - uy * vx, dot = ux * vx + uy * vy;
-    if (cross == 0 && dot < 0) return false;  // the outline doubles back on itself
-    left |= cross > 0;
-    right |= cross < 0;
-    turning += std::atan2(cross, dot);
-  }
-  // Every turn the same way and once round in all (a pentagram turns the same way twice round).
-  return !(left && right) && std::abs(std::abs(turning) - 2 * std::numbers::pi) < 1e-6;
 }
 
 }  // namespace raycube::core

@@ -1,7 +1,7 @@
 #pragma once
-// The inside of a concave polygon, answered in time about constant in its vertex count. NFF's "p" may be
-// concave (SPD gears writes its gear faces as 144-vertex outlines with the teeth cut in); a fan of triangles
-// around vertex 0 covers such a polygon's notches too, and tests every vertex. The outline instead holds the
+// The inside of a polygon, concave or convex, answered in time about constant in its vertex count. NFF's
+// "p" may be concave (SPD gears writes its gear faces as 144-vertex outlines with the teeth cut in); a fan of
+// triangles around vertex 0 covers such a polygon's notches too, and tests every vertex. The outline instead holds the
 // polygon in its own plane, dropped onto the two axes its normal is least along, with its edges sorted into
 // horizontal bands of equal height: a point's band lists every edge whose height range contains the point's,
 // and the even-odd rule (the crossing number of a half-line towards +x, as POV-Ray's polygon) decides on
@@ -58,10 +58,5 @@ class PolygonOutline {
   std::vector<std::uint32_t> bandStart_;  // edges of band b: edges_[bandStart_[b] .. bandStart_[b + 1])
   std::vector<Edge> edges_;               // each edge once per band it spans
 };
-
-// Whether the fan of triangles around vertex 0 covers exactly the polygon: it does when the polygon is
-// convex (every turn the same way, going round once). The fan test is kept for those (the images of convex
-// polygons do not change); the others need a PolygonOutline.
-bool isConvex(const std::vector<Vec3>& vertices);
 
 }  // namespace raycube::core

@@ -15,7 +15,7 @@ namespace raycube::core {
 
 Polygon::Polygon(std::vector<Vec3> points)
     : vertices(std::move(points)),
-      outline(isConvex(vertices) ? nullptr : std::make_shared<const PolygonOutline>(vertices)) {}
+      outline(vertices.size() > kMostFanVertices ? std::make_shared<const PolygonOutline>(vertices) : nullptr) {}
 
 SceneFeatures Scene::features() const {
   SceneFeatures f;
