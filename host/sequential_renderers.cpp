@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <chrono>
 #include <optional>
 
@@ -93,10 +94,15 @@ RenderResult renderImageParallelIn(const core::Scene& scene, const RenderSetting
   beginTracing(progress, scene, view, shading, settings.progress);
   const auto traceStart = Clock::now();
   tbb::combinable<core::TraceCounters> counters;
-  // Each sample row belongs to exactly one task, so frame buffer slots never have two writers.
+  // Each sample row belongs to exactly one task, so frame buffer slots never have two writers. Every task
+  // releases its rows and the host acquires them all after the join: the join already orders them, but in
+  // Debian's oneTBB, built without ThreadSanitizer, invisibly to it.
+  std::atomic<int> tasksDone{0};
   tbb::parallel_for(tbb::blocked_range<int>(0, view.samplesY(), 4), [&](const tbb::blocked_range<int>& rows) {
     traceRows<Real>(view, shading, database, rows.begin(), rows.end(), frame, counters.local(), progress);
+    tasksDone.fetch_add(1, std::memory_order_release);
   });
+  (void)tasksDone.load(std::memory_order_acquire);
   counters.combine_each([&](const core::TraceCounters& c) { result.counters += c; });
   result.image = frame.resolve(view);
   result.traceSeconds = secondsSince(traceStart);
