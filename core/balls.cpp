@@ -19,12 +19,14 @@ namespace {
 std::array<Vec3, 9> childDirections() {
   const double dist = 1.0 / std::sqrt(2.0);
   std::array<Vec3, 3> trio{Vec3(dist, dist, 0.0), Vec3(dist, 0.0, -dist), Vec3(0.0, dist, -dist)};
-  const SpdMatrix tilt = spdAxisRotation(glm::normalize(Vec3(1.0, -1.0, 0.0)), std::asin(2.0 / std::sqrt(6.0)));
+  const SpdMatrix tilt =
+      spdAxisRotation(glm::normalize(Vec3(1.0, -1.0, 0.0)), std::asin(2.0 / std::sqrt(6.0)));
   for (Vec3& direction : trio) direction = spdTransformVector(direction, tilt);
   std::array<Vec3, 9> directions;
   for (int set = 0; set < 3; ++set) {
     const SpdMatrix spin = spdRotation(SpdAxis::Z, set * 2.0 * std::numbers::pi / 3.0);
-    for (int vertex = 0; vertex < 3; ++vertex) directions[set * 3 + vertex] = spdTransformVector(trio[vertex], spin);
+    for (int vertex = 0; vertex < 3; ++vertex)
+      directions[set * 3 + vertex] = spdTransformVector(trio[vertex], spin);
   }
   return directions;
 }
@@ -44,7 +46,8 @@ void addFlake(Scene& scene, const std::array<Vec3, 9>& directions, int depth, co
     // lib_normalize_vector leaves a zero vector as it is: an axis a rounding step off +Z (from size 5 on)
     // has no rotation axis, and the matrix is then the identity scaled by cos(angle), not NaN.
     const Vec3 across = glm::cross(Vec3(0, 0, 1), axis);
-    orient = spdAxisRotation(glm::dot(across, across) > 0 ? glm::normalize(across) : across, std::acos(axis.z));
+    orient =
+        spdAxisRotation(glm::dot(across, across) > 0 ? glm::normalize(across) : across, std::acos(axis.z));
   }
   const double scale = radius * (1.0 + kChildRatio);
   for (const Vec3& direction : directions) {

@@ -1,9 +1,9 @@
 #include "core/nff_writer.h"
 
-#include <sstream>
-
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+
+#include <sstream>
 
 namespace raycube::core {
 
@@ -42,8 +42,9 @@ void writeShape(std::ostream& out, const Object& object) {
   if (const auto* sphere = std::get_if<Sphere>(&shape)) {
     fmt::print(out, "s {} {}\n", numbers(sphere->center), signedRadius(sphere->radius, object.insideVisible));
   } else if (const auto* cone = std::get_if<Cone>(&shape)) {
-    fmt::print(out, "c {} {} {} {}\n", numbers(cone->base), signedRadius(cone->baseRadius, object.insideVisible),
-               numbers(cone->apex), signedRadius(cone->apexRadius, object.insideVisible));
+    fmt::print(out, "c {} {} {} {}\n", numbers(cone->base),
+               signedRadius(cone->baseRadius, object.insideVisible), numbers(cone->apex),
+               signedRadius(cone->apexRadius, object.insideVisible));
   } else if (const auto* polygon = std::get_if<Polygon>(&shape)) {
     fmt::print(out, "p {}\n", polygon->vertices.size());
     for (const Vec3& vertex : polygon->vertices) fmt::print(out, "{}\n", numbers(vertex));

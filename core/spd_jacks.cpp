@@ -1,10 +1,10 @@
 // SPD jacks.c (Alexander Enzmann): a jack (three cylinders, six spheres at their ends) with a half-size
 // jack in each of its eight octants, recursively, like a Menger sponge. One light. jacks.c places each jack
 // through the SPD's transformation stack; the NFF output carries the transformed spheres and cylinders.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "core/spd_matrix.h"
 #include "core/spd_output.h"
@@ -22,7 +22,8 @@ void outputJack(SpdOutput& out, const SpdMatrix& place) {
   const SpdMatrix tx = spdProduct(spdScaling(Vec3(0.75, 0.75, 0.75)), place);
   const double scale = std::fabs(spdScaleOf(tx));
   // Written out rather than negated: -Vec3(1, 0, 0) has negative zeros, which can print as "-0".
-  const Vec3 ends[6] = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, -1)};
+  const Vec3 ends[6] = {Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1),
+                        Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, -1)};
   for (int axis = 0; axis < 3; ++axis) {
     out.cylcone(spdTransformPoint(ends[axis + 3], tx), kArmRadius * scale, spdTransformPoint(ends[axis], tx),
                 kArmRadius * scale);
@@ -55,7 +56,8 @@ Scene makeJacks(int size) {
 
   // The whole group turned -30 degrees about x, then -20 about y (the SPD stack applies the last pushed
   // transformation first, so the product reads from the object outwards).
-  const SpdMatrix tiltedX = spdProduct(spdRotation(SpdAxis::X, -30 * std::numbers::pi / 180.0), spdIdentity());
+  const SpdMatrix tiltedX =
+      spdProduct(spdRotation(SpdAxis::X, -30 * std::numbers::pi / 180.0), spdIdentity());
   const SpdMatrix turned = spdProduct(spdRotation(SpdAxis::Y, -20 * std::numbers::pi / 180.0), tiltedX);
   out.color(Color(0.737, 0.561, 0.561), 0.7, 0.7, 20.0, 0.0, 1.0);  // pink
   std::size_t jacks = 0;

@@ -1,8 +1,8 @@
 // SPD lattice.c (Antonio Costa): shiny spheres on a cubic lattice, each joined to its neighbours by matte
 // cylinders. Six lights. Every object is preceded by its own material line, as lattice.c prints them.
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/spd_output.h"
 #include "core/spd_scenes.h"
@@ -44,7 +44,8 @@ struct Lattice {
 }  // namespace
 
 Scene makeLattice(int size) {
-  requireSpdSize("lattice", size, kMaxLatticeSize, "cells along an edge: 1 gives 20 primitives, 12 gives 8281");
+  requireSpdSize("lattice", size, kMaxLatticeSize,
+                 "cells along an edge: 1 gives 20 primitives, 12 gives 8281");
   SpdOutput out(fmt::format("lattice{}", size));
   const double step = 1.0 / double(size);
   const double sphereRadius = kSphereRadius / double(size);
@@ -53,10 +54,10 @@ Scene makeLattice(int size) {
   out.background(Color(0.078, 0.361, 0.753));
   const double middle = (double(size >> 1) + 0.5) * step;
   const double lift = 1.0 / double(size << 1);
-  out.viewpoint(Vec3(middle, 1.0, 1.0 - lift), Vec3(middle, -1.0, -1.0 - lift), Vec3(0.2, 1.0, 0.0), 60.0, 0.0,
-                512, 512);
-  for (const Vec3& light : {Vec3(2.0, 0.5, 0.5), Vec3(-1.0, 0.5, 0.5), Vec3(0.5, 2.0, 0.5), Vec3(0.5, -1.0, 0.5),
-                            Vec3(0.5, 0.5, 2.0), Vec3(0.5, 0.5, -1.0)}) {
+  out.viewpoint(Vec3(middle, 1.0, 1.0 - lift), Vec3(middle, -1.0, -1.0 - lift), Vec3(0.2, 1.0, 0.0), 60.0,
+                0.0, 512, 512);
+  for (const Vec3& light : {Vec3(2.0, 0.5, 0.5), Vec3(-1.0, 0.5, 0.5), Vec3(0.5, 2.0, 0.5),
+                            Vec3(0.5, -1.0, 0.5), Vec3(0.5, 0.5, 2.0), Vec3(0.5, 0.5, -1.0)}) {
     out.light(light);
   }
 

@@ -1,11 +1,11 @@
 // SPD mount.c (Eric Haines): a fractal mountain by Carpenter's midpoint displacement on a square grid, with a
 // pyramid of four glass spheres before it. One light. The mountain uses mount.c's original hash (the SPD's
 // default, "for consistency with previously published results"), repetitions and all.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "core/spd_matrix.h"
 #include "core/spd_output.h"
@@ -74,7 +74,8 @@ struct Mountain {
     const double right = displaced(llX + width, llY + half, (z.lr + z.ur) / 2.0, rise);
     const double upper = displaced(llX + half, llY + width, (z.ur + z.ul) / 2.0, rise);
     const double left = displaced(llX, llY + half, (z.ul + z.ll) / 2.0, rise);
-    const double middle = displaced(llX + half, llY + half, (z.ll + z.lr + z.ur + z.ul) / 4.0, 1.4142136 * rise);
+    const double middle =
+        displaced(llX + half, llY + half, (z.ll + z.lr + z.ur + z.ul) / 4.0, 1.4142136 * rise);
     grow(half, llX, llY, {z.ll, lower, middle, left});
     grow(half, llX + half, llY, {lower, z.lr, right, middle});
     grow(half, llX + half, llY + half, {middle, right, z.ur, upper});
@@ -107,7 +108,8 @@ void outputSpheres(SpdOutput& out, const Vec3& center, double radius) {
 }  // namespace
 
 Scene makeMount(int size) {
-  requireSpdSize("mount", size, kMaxMountSize, "the fractal's subdivisions: 1 gives 12 primitives, 6 gives 8196");
+  requireSpdSize("mount", size, kMaxMountSize,
+                 "the fractal's subdivisions: 1 gives 12 primitives, 6 gives 8196");
   SpdOutput out(fmt::format("mount{}", size));
   out.background(Color(0.078, 0.361, 0.753));
   out.viewpoint(Vec3(-1.6, 1.6, 1.7), Vec3(0, 0, 0), Vec3(0, 0, 1), 45.0, 0.01, 512, 512);

@@ -92,8 +92,8 @@ void SpdOutput::polygon(std::vector<Vec3> vertices) {
 }
 
 void SpdOutput::add(Shape shape) {
-  scene_.objects.push_back(Object{std::move(shape), static_cast<std::uint32_t>(scene_.materials.size() - 1),
-                                  false});
+  scene_.objects.push_back(
+      Object{std::move(shape), static_cast<std::uint32_t>(scene_.materials.size() - 1), false});
 }
 
 }  // namespace raycube::core

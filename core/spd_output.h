@@ -18,14 +18,15 @@ class SpdOutput {
  public:
   explicit SpdOutput(std::string sceneName);
 
-  void background(const Color& color);                                    // lib_output_background_color
+  void background(const Color& color);  // lib_output_background_color
   void viewpoint(const Vec3& from, const Vec3& at, const Vec3& up, double angleDegrees, double hither,
-                 int width, int height);                                  // lib_output_viewpoint
-  void light(const Vec3& position);                                       // lib_output_light
+                 int width, int height);  // lib_output_viewpoint
+  void light(const Vec3& position);       // lib_output_light
   // lib_output_color: the highlight's half angle becomes NFF's Phong exponent.
   void color(const Color& color, double kd, double ks, double highlightDegrees, double kt, double ior);
-  void sphere(const Vec3& center, double radius);                          // lib_output_sphere
-  void cylcone(const Vec3& base, double baseRadius, const Vec3& apex, double apexRadius);  // lib_output_cylcone
+  void sphere(const Vec3& center, double radius);  // lib_output_sphere
+  void cylcone(const Vec3& base, double baseRadius, const Vec3& apex,
+               double apexRadius);  // lib_output_cylcone
   // lib_output_polygon: adjacent vertices closer than the SPD's EPSILON2 merge; fewer than 3 left prints
   // nothing.
   void polygon(std::vector<Vec3> vertices);

@@ -1,10 +1,10 @@
 // SPD rings.c (Eric Haines): objects of six pentagonal rings, which join the midpoints of a dodecahedron's
 // edges, stacked in a pyramid that the viewer looks at from its tip, before a white wall. Three lights.
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <numbers>
-
-#include <fmt/format.h>
 
 #include "core/spd_matrix.h"
 #include "core/spd_output.h"
@@ -24,8 +24,8 @@ std::array<Vec3, kRingPoints> ringPoints() {
   std::array<Vec3, kRingPoints> points;
   const double scale = 1.0 / (1.0 + kRadius);
   for (int v = 0; v < 5; ++v) {
-    points[v] = Vec3(scale * std::cos(double(v) * 2.0 * kPi / 5.0), scale * std::sin(double(v) * 2.0 * kPi / 5.0),
-                     0.0);
+    points[v] = Vec3(scale * std::cos(double(v) * 2.0 * kPi / 5.0),
+                     scale * std::sin(double(v) * 2.0 * kPi / 5.0), 0.0);
   }
   const double dihedral = 2.0 * std::acos(std::cos(kPi / 3.0) / std::sin(kPi / 5.0));
   const SpdMatrix tilt = spdRotation(SpdAxis::X, dihedral);
@@ -75,7 +75,8 @@ Scene makeRings(int size) {
   const double wallY = yDiff * (size + 1);
   const double wallXZ = 1.01 * (wallY - from.y) * std::tan(kPi / 8.0);
   out.polygon({Vec3(wallXZ + from.x, wallY, wallXZ + from.z), Vec3(-wallXZ + from.x, wallY, wallXZ + from.z),
-               Vec3(-wallXZ + from.x, wallY, -wallXZ + from.z), Vec3(wallXZ + from.x, wallY, -wallXZ + from.z)});
+               Vec3(-wallXZ + from.x, wallY, -wallXZ + from.z),
+               Vec3(wallXZ + from.x, wallY, -wallXZ + from.z)});
 
   out.reserve(1 + std::size_t(10) * size * (size + 1) * (2 * size + 1));
   const std::array<Vec3, kRingPoints> points = ringPoints();

@@ -1,10 +1,10 @@
 #include "core/spd_scenes.h"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <stdexcept>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "core/balls.h"
 
@@ -13,12 +13,16 @@ namespace raycube::core {
 namespace {
 
 constexpr std::array kGenerators{
-    SpdGenerator{"balls", 4, kMaxBallsSize, makeBalls, "sphereflake: 9^0+...+9^s spheres on a floor; 4 -> 7382"},
+    SpdGenerator{"balls", 4, kMaxBallsSize, makeBalls,
+                 "sphereflake: 9^0+...+9^s spheres on a floor; 4 -> 7382"},
     SpdGenerator{"jacks", 4, kMaxJacksSize, makeJacks, "recursive jacks of cylinders and spheres; 4 -> 5265"},
-    SpdGenerator{"lattice", 12, kMaxLatticeSize, makeLattice, "spheres on a cubic lattice joined by cylinders; 12 -> 8281"},
+    SpdGenerator{"lattice", 12, kMaxLatticeSize, makeLattice,
+                 "spheres on a cubic lattice joined by cylinders; 12 -> 8281"},
     SpdGenerator{"mount", 6, kMaxMountSize, makeMount, "fractal mountain and four glass spheres; 6 -> 8196"},
-    SpdGenerator{"rings", 7, kMaxRingsSize, makeRings, "pyramid of pentagonal rings before a wall; 7 -> 8401"},
-    SpdGenerator{"sombrero", 3, kMaxSombreroSize, makeSombrero, "height field of a damped ripple, triangles; 3 -> 32258"},
+    SpdGenerator{"rings", 7, kMaxRingsSize, makeRings,
+                 "pyramid of pentagonal rings before a wall; 7 -> 8401"},
+    SpdGenerator{"sombrero", 3, kMaxSombreroSize, makeSombrero,
+                 "height field of a damped ripple, triangles; 3 -> 32258"},
     SpdGenerator{"tetra", 6, kMaxTetraSize, makeTetra, "Sierpinski tetrahedron of triangles; 6 -> 4096"},
 };
 
@@ -52,7 +56,8 @@ Scene makeSpdScene(std::string_view name, int size) {
 
 void requireSpdSize(std::string_view name, int size, int max, std::string_view meaning) {
   if (size < 1 || size > max) {
-    throw std::invalid_argument(fmt::format("{} size must be from 1 to {} ({}), got {}", name, max, meaning, size));
+    throw std::invalid_argument(
+        fmt::format("{} size must be from 1 to {} ({}), got {}", name, max, meaning, size));
   }
 }
 

@@ -1,9 +1,9 @@
 // SPD sombrero.c (Alexander Enzmann, Eduard Schwan): the height field of a damped cosine ripple, printed as
 // triangles. One light. Size s samples a 32*2^(s-1) square grid.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "core/spd_output.h"
 #include "core/spd_scenes.h"
@@ -11,7 +11,6 @@
 namespace raycube::core {
 
 namespace {
-
 
 // sombrero.c create_sombrero(): heights in float, as the SPD stores them, sampled from (x0, y0) in steps of
 // (x1 - x0) / samples (one step short of x1). Row i runs along x at y = y0 + i * step.
@@ -36,8 +35,8 @@ std::vector<std::vector<float>> sombreroHeights(int samples, double x0, double x
 
 // libply.c lib_output_polygon_height(): two triangles per grid square, the height field's y up; rows along
 // z from z0 to z1, columns along x from x0 to x1.
-void outputHeightField(SpdOutput& out, const std::vector<std::vector<float>>& data, double x0, double x1, double y0,
-                       double z0, double z1) {
+void outputHeightField(SpdOutput& out, const std::vector<std::vector<float>>& data, double x0, double x1,
+                       double y0, double z0, double z1) {
   const int rows = static_cast<int>(data.size());
   const int columns = static_cast<int>(data[0].size());
   const double dx = (x1 - x0) / double(columns - 1);
@@ -54,9 +53,10 @@ void outputHeightField(SpdOutput& out, const std::vector<std::vector<float>>& da
 }  // namespace
 
 Scene makeSombrero(int size) {
-  requireSpdSize("sombrero", size, kMaxSombreroSize,
-                 "the height field's resolution, 32*2^(size-1) samples a side: 1 gives 1922 triangles, 3 gives "
-                 "32258");
+  requireSpdSize(
+      "sombrero", size, kMaxSombreroSize,
+      "the height field's resolution, 32*2^(size-1) samples a side: 1 gives 1922 triangles, 3 gives "
+      "32258");
   SpdOutput out(fmt::format("sombrero{}", size));
   out.background(Color(0.078, 0.361, 0.753));
   out.viewpoint(Vec3(0, 5, -8), Vec3(0, 0, 0), Vec3(0, 0, 1), 40.0, 0.01, 512, 512);

@@ -1,9 +1,9 @@
 // SPD tetra.c (Eric Haines): a recursive tetrahedral pyramid (Sierpinski's tetrahedron), after the scene
 // of Glassner and of Kay & Kajiya, with their view and light. One light, no reflection.
+#include <fmt/format.h>
+
 #include <array>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "core/spd_output.h"
 #include "core/spd_scenes.h"
@@ -11,7 +11,6 @@
 namespace raycube::core {
 
 namespace {
-
 
 // The corners (x, y, z) in {-1, 1}^3 with x*y*z == 1, in tetra.c's loop order: the tetrahedron inscribed in
 // the cube of half side 1.

@@ -46,7 +46,8 @@ std::uint64_t eyeRaysThatHit(const core::Scene& scene, const RenderSettings& set
   core::TraceCounters counters;
   std::uint64_t hits = 0;
   for (int sy = 0; sy < view.samplesY(); ++sy) {
-    for (int sx = 0; sx < view.samplesX(); ++sx) hits += bvh.closestHit(view.eyeRay(sx, sy), counters).found();
+    for (int sx = 0; sx < view.samplesX(); ++sx)
+      hits += bvh.closestHit(view.eyeRay(sx, sy), counters).found();
   }
   return hits;
 }

@@ -46,14 +46,29 @@ struct Expected {
 // cylinders at 1/2/3/5/12; sombrero.c a 32/64/128 square grid at 1/2/3, two triangles per square. jacks.c's
 // table is blank ("xx"): one jack is 3 cylinders and 6 spheres, with 8 half-size jacks in it per level.
 const Expected kExpected[] = {
-    {"rings", 1, 30, 30, 1},        {"rings", 2, 150, 150, 1},     {"rings", 3, 420, 420, 1},
-    {"rings", 7, 4200, 4200, 1},    {"mount", 1, 4, 0, 8},          {"mount", 2, 4, 0, 32},
-    {"mount", 3, 4, 0, 128},        {"mount", 6, 4, 0, 8192},       {"tetra", 1, 0, 0, 4},
-    {"tetra", 2, 0, 0, 16},         {"tetra", 3, 0, 0, 64},         {"tetra", 6, 0, 0, 4096},
-    {"lattice", 1, 8, 12, 0},       {"lattice", 2, 27, 54, 0},      {"lattice", 3, 64, 144, 0},
-    {"lattice", 5, 216, 540, 0},    {"lattice", 12, 2197, 6084, 0}, {"jacks", 1, 6, 3, 0},
-    {"jacks", 2, 54, 27, 0},        {"jacks", 4, 3510, 1755, 0},    {"sombrero", 1, 0, 0, 2 * 31 * 31},
-    {"sombrero", 2, 0, 0, 2 * 63 * 63}, {"sombrero", 3, 0, 0, 2 * 127 * 127},
+    {"rings", 1, 30, 30, 1},
+    {"rings", 2, 150, 150, 1},
+    {"rings", 3, 420, 420, 1},
+    {"rings", 7, 4200, 4200, 1},
+    {"mount", 1, 4, 0, 8},
+    {"mount", 2, 4, 0, 32},
+    {"mount", 3, 4, 0, 128},
+    {"mount", 6, 4, 0, 8192},
+    {"tetra", 1, 0, 0, 4},
+    {"tetra", 2, 0, 0, 16},
+    {"tetra", 3, 0, 0, 64},
+    {"tetra", 6, 0, 0, 4096},
+    {"lattice", 1, 8, 12, 0},
+    {"lattice", 2, 27, 54, 0},
+    {"lattice", 3, 64, 144, 0},
+    {"lattice", 5, 216, 540, 0},
+    {"lattice", 12, 2197, 6084, 0},
+    {"jacks", 1, 6, 3, 0},
+    {"jacks", 2, 54, 27, 0},
+    {"jacks", 4, 3510, 1755, 0},
+    {"sombrero", 1, 0, 0, 2 * 31 * 31},
+    {"sombrero", 2, 0, 0, 2 * 63 * 63},
+    {"sombrero", 3, 0, 0, 2 * 127 * 127},
 };
 
 class SpdGeneratorCounts : public testing::TestWithParam<Expected> {};
@@ -75,11 +90,11 @@ INSTANTIATE_TEST_SUITE_P(All, SpdGeneratorCounts, testing::ValuesIn(kExpected),
                          });
 
 TEST(SpdGenerators, DefaultSizesAreTheSpdsTotals) {
-  EXPECT_EQ(makeSpdScene("mount").objects.size(), 8196u);   // SPD-README total prim.
-  EXPECT_EQ(makeSpdScene("rings").objects.size(), 8401u);   // SPD-README total prim.
-  EXPECT_EQ(makeSpdScene("tetra").objects.size(), 4096u);   // SPD-README total prim.
+  EXPECT_EQ(makeSpdScene("mount").objects.size(), 8196u);    // SPD-README total prim.
+  EXPECT_EQ(makeSpdScene("rings").objects.size(), 8401u);    // SPD-README total prim.
+  EXPECT_EQ(makeSpdScene("tetra").objects.size(), 4096u);    // SPD-README total prim.
   EXPECT_EQ(makeSpdScene("lattice").objects.size(), 8281u);  // lattice.c: 2197 + 6084
-  EXPECT_EQ(makeSpdScene("balls").objects.size(), 7382u);   // SPD-README total prim.
+  EXPECT_EQ(makeSpdScene("balls").objects.size(), 7382u);    // SPD-README total prim.
 }
 
 // The default-size files in scenes/ are what `raycube spd NAME` writes, byte for byte (and, checked when
