@@ -8,57 +8,25 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/spd_matrix.h"
+
 namespace raycube::core {
 
 namespace {
-
-// SPD lib's matrices act on row vectors: v' = v * M. Kept so every rounding step follows balls.c.
-using Matrix = std::array<std::array<double, 3>, 3>;
-
-Vec3 transform(const Vec3& v, const Matrix& m) {
-  return Vec3(v.x * m[0][0] + v.y * m[1][0] + v.z * m[2][0], v.x * m[0][1] + v.y * m[1][1] + v.z * m[2][1],
-              v.x * m[0][2] + v.y * m[1][2] + v.z * m[2][2]);
-}
-
-Matrix identity() {
-  return {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-}
-
-// lib_create_rotate_matrix(mx, Z_AXIS, angle)
-Matrix rotateZ(double angle) {
-  const double c = std::cos(angle);
-  const double s = std::sin(angle);
-  return {{{c, s, 0}, {-s, c, 0}, {0, 0, 1}}};
-}
-
-// lib_create_rotate_matrix(mx, Y_AXIS, angle)
-Matrix rotateY(double angle) {
-  const double c = std::cos(angle);
-  const double s = std::sin(angle);
-  return {{{c, 0, -s}, {0, 1, 0}, {s, 0, c}}};
-}
-
-// lib_create_axis_rotate_matrix: rotation about a unit axis.
-Matrix rotateAxis(const Vec3& a, double angle) {
-  const double c = std::cos(angle);
-  const double s = std::sin(angle);
-  const double t = 1.0 - c;
-  return {{{a.x * a.x + (1.0 - a.x * a.x) * c, a.x * a.y * t + a.z * s, a.x * a.z * t - a.y * s},
-           {a.x * a.y * t - a.z * s, a.y * a.y + (1.0 - a.y * a.y) * c, a.y * a.z * t + a.x * s},
-           {a.x * a.z * t + a.y * s, a.y * a.z * t - a.x * s, a.z * a.z + (1.0 - a.z * a.z) * c}}};
-}
 
 // balls.c create_objset(): the 9 unit directions of the children around a parent whose axis is +Z, three
 // trios rotated 120 degrees apart.
 std::array<Vec3, 9> childDirections() {
   const double dist = 1.0 / std::sqrt(2.0);
   std::array<Vec3, 3> trio{Vec3(dist, dist, 0.0), Vec3(dist, 0.0, -dist), Vec3(0.0, dist, -dist)};
-  const Matrix tilt = rotateAxis(glm::normalize(Vec3(1.0, -1.0, 0.0)), std::asin(2.0 / std::sqrt(6.0)));
-  for (Vec3& direction : trio) direction = transform(direction, tilt);
+  const SpdMatrix tilt =
+      spdAxisRotation(glm::normalize(Vec3(1.0, -1.0, 0.0)), std::asin(2.0 / std::sqrt(6.0)));
+  for (Vec3& direction : trio) direction = spdTransformVector(direction, tilt);
   std::array<Vec3, 9> directions;
   for (int set = 0; set < 3; ++set) {
-    const Matrix spin = rotateZ(set * 2.0 * std::numbers::pi / 3.0);
-    for (int vertex = 0; vertex < 3; ++vertex) directions[set * 3 + vertex] = transform(trio[vertex], spin);
+    const SpdMatrix spin = spdRotation(SpdAxis::Z, set * 2.0 * std::numbers::pi / 3.0);
+    for (int vertex = 0; vertex < 3; ++vertex)
+      directions[set * 3 + vertex] = spdTransformVector(trio[vertex], spin);
   }
   return directions;
 }
@@ -69,20 +37,21 @@ void addFlake(Scene& scene, const std::array<Vec3, 9>& directions, int depth, co
   constexpr double kChildRatio = 1.0 / 3.0;  // a child's radius over its parent's
   scene.objects.push_back(Object{Sphere{center, radius}, 1, false});
   if (depth <= 0) return;
-  Matrix orient;
+  SpdMatrix orient;
   if (axis.z >= 1.0) {
-    orient = identity();
+    orient = spdIdentity();
   } else if (axis.z <= -1.0) {
-    orient = rotateY(std::numbers::pi);
+    orient = spdRotation(SpdAxis::Y, std::numbers::pi);
   } else {
     // lib_normalize_vector leaves a zero vector as it is: an axis a rounding step off +Z (from size 5 on)
     // has no rotation axis, and the matrix is then the identity scaled by cos(angle), not NaN.
     const Vec3 across = glm::cross(Vec3(0, 0, 1), axis);
-    orient = rotateAxis(glm::dot(across, across) > 0 ? glm::normalize(across) : across, std::acos(axis.z));
+    orient =
+        spdAxisRotation(glm::dot(across, across) > 0 ? glm::normalize(across) : across, std::acos(axis.z));
   }
   const double scale = radius * (1.0 + kChildRatio);
   for (const Vec3& direction : directions) {
-    const Vec3 child = transform(direction, orient) * scale + center;
+    const Vec3 child = spdTransformVector(direction, orient) * scale + center;
     addFlake(scene, directions, depth - 1, child, radius * kChildRatio, (child - center) / scale);
   }
 }

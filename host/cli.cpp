@@ -23,6 +23,8 @@
 #include "core/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
+#include "core/nff_writer.h"
+#include "core/spd_scenes.h"
 #include "host/chart.h"
 #include "host/csv_chart.h"
 #include "host/load_chart.h"
@@ -71,6 +73,7 @@ std::vector<std::string> keysOf(const std::map<std::string, Value>& map) {
 struct RenderCommand {
   std::string scenePath;
   int balls = 0;
+  std::string spd;  // NAME[:SIZE], a built-in SPD generator
   std::string size;
   int depth = 5;
   int spp = 1;
@@ -180,8 +183,48 @@ void requireWritable(const std::string& path, const char* option, const std::vec
   if (!existed) std::filesystem::remove(p, error);
 }
 
+// --spd NAME[:SIZE]: a built-in SPD generator and its size (0 for the SPD's default size).
+struct SpdChoice {
+  std::string name;
+  int size = 0;
+};
+
+// Throws std::invalid_argument naming the known generators, or the sizes a generator accepts.
+SpdChoice parseSpdChoice(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  SpdChoice choice{text.substr(0, colon), 0};
+  const core::SpdGenerator& generator = core::spdGenerator(choice.name);
+  if (colon == std::string::npos) return choice;
+  const std::string_view digits = std::string_view(text).substr(colon + 1);
+  long long size = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), size);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || size < 1 ||
+      size > generator.maxSize) {
+    throw std::invalid_argument(fmt::format("{} size must be a whole number from 1 to {} (default {}), got '{}'",
+                                            generator.name, generator.maxSize, generator.defaultSize, digits));
+  }
+  choice.size = int(size);
+  return choice;
+}
+
+// Checks NAME[:SIZE] while the command line is parsed, before any work.
+const CLI::Validator kSpdChoice(
+    [](const std::string& text) {
+      try {
+        parseSpdChoice(text);
+      } catch (const std::invalid_argument& e) {
+        return std::string(e.what());
+      }
+      return std::string();
+    },
+    "NAME[:SIZE]", "SPD_SCENE");
+
 core::Scene loadScene(const RenderCommand& cmd) {
   if (!cmd.scenePath.empty()) return core::readNff(cmd.scenePath);
+  if (!cmd.spd.empty()) {
+    const SpdChoice choice = parseSpdChoice(cmd.spd);
+    return core::makeSpdScene(choice.name, choice.size);
+  }
   return core::makeBalls(cmd.balls > 0 ? cmd.balls : 2);  // the default scene: the paper's balls, size 2
 }
 
@@ -380,12 +423,33 @@ int runRender(const RenderCommand& cmd) {
   return result->counters.nonFinite > 0 ? 3 : 0;
 }
 
+std::string spdSceneList() {
+  std::string list;
+  for (const core::SpdGenerator& generator : core::spdGenerators()) {
+    list += fmt::format("  {:<9} default {:>2}, sizes 1-{:<2}  {}\n", generator.name, generator.defaultSize,
+                        generator.maxSize, generator.contents);
+  }
+  return list;
+}
+
+void addSpdOption(CLI::App* app, std::string& spd) {
+  std::string names;
+  for (const core::SpdGenerator& generator : core::spdGenerators()) {
+    names += fmt::format("{}{} {}", names.empty() ? "" : ", ", generator.name, generator.defaultSize);
+  }
+  app->add_option("--spd", spd,
+                  "Built-in SPD scene NAME[:SIZE], SIZE defaulting to the SPD's default size (" + names +
+                      "); `raycube spd` lists them")
+      ->check(kSpdChoice);
+}
+
 // The options of a render; a scaling study takes the same, but a list of processor counts for --procs.
 void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render->add_option("scene", cmd.scenePath, "NFF scene file (default: the built-in balls scene)")
       ->check(CLI::ExistingFile);
-  render->add_option("--balls", cmd.balls, "Built-in SPD balls (sphereflake) scene of this size (1-6)")
-      ->check(CLI::Range(1, 6));
+  render->add_option("--balls", cmd.balls, "Built-in SPD balls (sphereflake) scene of this size (1-6): --spd balls:N")
+      ->check(CLI::Range(1, core::kMaxBallsSize));
+  addSpdOption(render, cmd.spd);
   render->add_option("--size", cmd.size, "Image size WxH (overrides the file's resolution)");
   render->add_option("--depth", cmd.depth, "Maximum ray tree depth, the eye ray being depth 1")
       ->check(CLI::Range(1, 64));
@@ -467,6 +531,7 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
                      "Write a self-contained HTML run report (image, settings, summary, charts, table)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
   render->get_option("--balls")->excludes("scene");
+  render->get_option("--spd")->excludes("scene")->excludes("--balls");
 }
 
 void addRenderCommand(CLI::App& app, RenderCommand& cmd) {
@@ -536,6 +601,7 @@ void addScalingCommand(CLI::App& app, ScalingCommand& cmd) {
 struct TradeoffCommand {
   std::string scenePath;
   int balls = 0;
+  std::string spd;
   std::string size = "256x256";
   int runs = 3;
   int processors = 16;
@@ -550,6 +616,7 @@ int runTradeoff(const TradeoffCommand& cmd) {
   RenderCommand sceneCmd;
   sceneCmd.scenePath = cmd.scenePath;
   sceneCmd.balls = cmd.balls;
+  sceneCmd.spd = cmd.spd;
   const core::Scene scene = loadScene(sceneCmd);
   RenderSettings base;
   std::tie(base.width, base.height) = parsePair(cmd.size, "--size", "WxH", core::kMaxNffResolution);
@@ -603,7 +670,11 @@ void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
   CLI::App* t = app.add_subcommand("tradeoff", "Measure speed against accuracy for each knob");
   t->add_option("scene", cmd.scenePath, "NFF scene file (default: the built-in balls scene)")
       ->check(CLI::ExistingFile);
-  t->add_option("--balls", cmd.balls, "Built-in SPD balls scene of this size (1-6)")->check(CLI::Range(1, 6));
+  t->add_option("--balls", cmd.balls, "Built-in SPD balls scene of this size (1-6): --spd balls:N")
+      ->check(CLI::Range(1, core::kMaxBallsSize))
+      ->excludes("scene");
+  addSpdOption(t, cmd.spd);
+  t->get_option("--spd")->excludes("scene")->excludes("--balls");
   t->add_option("--size", cmd.size, "Image size WxH");
   t->add_option("--runs", cmd.runs, "Renders per setting (median time)")->check(CLI::Range(1, 100));
   t->add_option("--procs", cmd.processors, "Processors for the sub-sampling window study (BSP)")
@@ -615,6 +686,38 @@ void addTradeoffCommand(CLI::App& app, TradeoffCommand& cmd) {
                 "Measure nothing: redraw the plot (and report) from a CSV an earlier run wrote; give the "
                 "--size and --runs it used, for the caption")
       ->check(CLI::ExistingFile);
+}
+
+struct SpdCommand {
+  std::string scene;  // NAME[:SIZE]; empty: list the generators
+  std::string output;
+};
+
+// `raycube spd NAME[:SIZE] [-o FILE]`: the generated scene as NFF, the same text the SPD program prints.
+int runSpd(const SpdCommand& cmd) {
+  if (cmd.scene.empty()) {
+    std::cout << "Built-in SPD generators (raycube spd NAME[:SIZE], render --spd NAME[:SIZE]):\n" << spdSceneList();
+    return 0;
+  }
+  const SpdChoice choice = parseSpdChoice(cmd.scene);
+  const core::Scene scene = core::makeSpdScene(choice.name, choice.size);
+  if (cmd.output.empty() || cmd.output == "-") {
+    core::writeNff(std::cout, scene);
+    return 0;
+  }
+  std::ofstream file(ensureParent(cmd.output), std::ios::binary);
+  core::writeNff(file, scene);
+  file.close();
+  if (!file) throw std::runtime_error(fmt::format("cannot write '{}'", cmd.output));
+  std::cerr << fmt::format("wrote {} ({}: {} objects)\n", cmd.output, scene.name, scene.objects.size());
+  return 0;
+}
+
+void addSpdCommand(CLI::App& app, SpdCommand& cmd) {
+  CLI::App* spd = app.add_subcommand(
+      "spd", "Write a built-in SPD scene as NFF (the SPD program's own output); without a scene, list them");
+  spd->add_option("scene", cmd.scene, "NAME[:SIZE], SIZE defaulting to the SPD's default size")->check(kSpdChoice);
+  spd->add_option("-o,--output", cmd.output, "NFF file to write (default: standard output)");
 }
 
 struct PlotCommand {
@@ -683,6 +786,8 @@ int runCommandLine(int argc, char** argv) {
   addScalingCommand(app, scalingCmd);
   PlotCommand plotCmd;
   addPlotCommand(app, plotCmd);
+  SpdCommand spdCmd;
+  addSpdCommand(app, spdCmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -699,6 +804,7 @@ int runCommandLine(int argc, char** argv) {
     if (app.got_subcommand("tradeoff")) return runTradeoff(tradeoffCmd);
     if (app.got_subcommand("scaling")) return runScaling(scalingCmd);
     if (app.got_subcommand("plot")) return runPlot(plotCmd);
+    if (app.got_subcommand("spd")) return runSpd(spdCmd);
   } catch (const CLI::ValidationError& e) {
     std::cerr << "raycube: " << e.what() << '\n';
     return 2;

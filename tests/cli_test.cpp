@@ -18,6 +18,9 @@
 
 #include "core/balls.h"
 #include "core/image.h"
+#include "core/nff_reader.h"
+#include "core/nff_writer.h"
+#include "core/spd_scenes.h"
 #include "host/sequential_renderers.h"
 #include "test_support.h"
 
@@ -99,6 +102,36 @@ class Cli : public testing::Test {
   std::string binary_;
   fs::path dir_;
 };
+
+// `raycube spd NAME[:SIZE]` prints the generator's scene as NFF; -o writes it to a file; no name lists them.
+TEST_F(Cli, SpdWritesTheGeneratedSceneAsNff) {
+  const Outcome r = run("spd tetra:2");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.out, core::nffText(core::makeTetra(2)));
+  const Outcome file = run("spd rings -o scenes/r.nff");
+  EXPECT_EQ(file.exitCode, 0) << file.err;
+  EXPECT_EQ(core::readNff(dir_ / "scenes" / "r.nff").objects.size(), 8401u) << "rings' default size is 7";
+  const Outcome list = run("spd");
+  EXPECT_EQ(list.exitCode, 0);
+  for (const core::SpdGenerator& generator : core::spdGenerators())
+    EXPECT_NE(list.out.find(generator.name), std::string::npos) << list.out;
+}
+
+TEST_F(Cli, SpdNamesAndSizesAreCheckedBeforeAnyWork) {
+  expectOneLineError("spd teapot", {"teapot", "balls, jacks, lattice, mount, rings, sombrero, tetra"});
+  expectOneLineError("spd mount:8", {"mount", "1 to 7", "'8'"});
+  expectOneLineError("render --spd rings:x --size 16x16 -q -o x.png", {"rings", "'x'"});
+  expectOneLineError("render --spd rings --balls 2 --size 16x16 -q -o x.png", {"--balls", "--spd"});
+}
+
+TEST_F(Cli, RenderSpdMatchesTheNffFile) {
+  ASSERT_EQ(run("spd jacks:2 -o jacks2.nff").exitCode, 0);
+  const Outcome builtIn = run("render --spd jacks:2 --size 24x24 --procs 2x2 -q -o a.exr");
+  ASSERT_EQ(builtIn.exitCode, 0) << builtIn.err;
+  const Outcome fromFile = run("render jacks2.nff --size 24x24 --mode reference -q -o b.exr");
+  ASSERT_EQ(fromFile.exitCode, 0) << fromFile.err;
+  EXPECT_TRUE(core::bitIdentical(core::readImage(dir_ / "a.exr"), core::readImage(dir_ / "b.exr")));
+}
 
 TEST_F(Cli, HelpExitsZero) {
   const Outcome r = run("--help");
