@@ -203,6 +203,9 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
       if ((t < tEnd && !visitInterval(ray, t, tEnd, setup_.rearObjects, hit, transmission)) || lastPart(tEnd))
         return finishRay(ray, hit, transmission);
       t = tEnd;
+      // An eye ray is in its own pixel's pyramid wherever it is in front of the eye (3.1), however near the
+      // apex rounding put its origin (a float eye ray from the eye itself, hither 0, may start just behind).
+      if (primary) continue;
       if (const int owner = context_.regions.ownerAt(er, t); owner != setup_.id) return leaveFor(owner, t);
       continue;
     }

@@ -81,20 +81,11 @@ inline std::string describeDifference(const core::Image& a, const core::Image& b
   return text;
 }
 
-// Known defect, to be fixed in the machine: with "hither 0" (SPD lattice) an eye ray starts at the eye itself,
-// where every region's pyramid meets, and in float precision the walk sees a pyramid face a rounding step
-// ahead and sends the ray to a neighbour (lattice12, 32x32, BSP of 15: 4935 eye-ray messages), against 3.1.
-// The image and every ray count stay right; only that one check is waived, only then.
-inline bool eyeRaysMayLeaveTheirPyramid(const core::Scene& scene, const RenderSettings& settings) {
-  return scene.camera.hither == 0 && settings.precision == core::Precision::Float;
-}
-
 // Everything a machine run must agree on with the reference: the image bit for bit, every ray spawned
 // finished once and as many of each kind as the reference traced, every contribution delivered, no NaN, and
-// no eye ray sent to a neighbour (3.1; unless eyeMessagesWaived, see eyeRaysMayLeaveTheirPyramid).
+// no eye ray sent to a neighbour (3.1; even from the eye itself, hither 0, in float: SPD lattice).
 inline void expectMachineMatchesReference(const RenderResult& reference, const RenderResult& machine,
-                                          const MachineReport& report, const std::string& label,
-                                          bool eyeMessagesWaived = false) {
+                                          const MachineReport& report, const std::string& label) {
   EXPECT_TRUE(core::bitIdentical(machine.image, reference.image))
       << label
       << ": image differs from the reference: " << describeDifference(machine.image, reference.image);
@@ -122,8 +113,7 @@ inline void expectMachineMatchesReference(const RenderResult& reference, const R
   EXPECT_EQ(nonFinite, 0u) << label << ": non-finite contributions";
   EXPECT_EQ(reference.counters.nonFinite, 0u) << label << ": non-finite contributions in the reference";
   // 3.1: an eye ray lies inside the pyramid of its own pixel area.
-  if (!eyeMessagesWaived)
-    EXPECT_EQ(messages[std::size_t(core::RayKind::Eye)], 0u) << label << ": eye rays sent to a neighbour";
+  EXPECT_EQ(messages[std::size_t(core::RayKind::Eye)], 0u) << label << ": eye rays sent to a neighbour";
   EXPECT_EQ(int(report.processors.size()), report.settings.rows * report.settings.columns) << label;
 }
 
@@ -132,7 +122,7 @@ inline void renderAndCompare(const core::Scene& scene, const RenderResult& refer
                              const std::string& label) {
   MachineReport report;
   const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
-  expectMachineMatchesReference(reference, result, report, label, eyeRaysMayLeaveTheirPyramid(scene, settings));
+  expectMachineMatchesReference(reference, result, report, label);
 }
 
 }  // namespace raycube::host::testing_support

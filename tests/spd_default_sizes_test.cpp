@@ -50,8 +50,7 @@ TEST_P(SpdDefaultSizes, MachineIsBitIdenticalOnEveryPartition) {
     const std::string label = GetParam().path + ", " + p.label;
     MachineReport report;
     const RenderResult result = renderMachineWatched(scene, p.inFloat ? inFloat : settings, p.machine, report, label);
-    expectMachineMatchesReference(p.inFloat ? floatYardstick : yardstick, result, report, label,
-                                  eyeRaysMayLeaveTheirPyramid(scene, p.inFloat ? inFloat : settings));
+    expectMachineMatchesReference(p.inFloat ? floatYardstick : yardstick, result, report, label);
     // Auto gives the dense regions a BVH (there are some at these sizes); paper never does.
     std::size_t withBvh = 0;
     for (const ProcessorReport& processor : report.processors) withBvh += processor.node.bvh ? 1 : 0;
