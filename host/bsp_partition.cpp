@@ -18,10 +18,11 @@ struct Splitter {
   LoadMetric metric;
   std::vector<node::SampleRect> leaves;
 
-  // Load on each side of the line `axis` = k, for pieces already inside the rectangle.
-  void sides(const std::vector<ScreenSegment>& pieces, int axis, double k, double& below,
-             double& above) const {
-    below = above = 0;
+  // Load on each side of the line `axis` = k, for pieces already inside the rectangle (summed in locals:
+  // the callers' outputs sit side by side, written by different threads).
+  void sides(const std::vector<ScreenSegment>& pieces, int axis, double k, double& belowOut,
+             double& aboveOut) const {
+    double below = 0, above = 0;
     for (const ScreenSegment& s : pieces) {
       const double a = axis == 0 ? s.x0 : s.y0, b = axis == 0 ? s.x1 : s.y1;
       const double lo = std::min(a, b), hi = std::max(a, b);
@@ -36,6 +37,8 @@ struct Splitter {
         above += s.weight * (1 - f);
       }
     }
+    belowOut = below;
+    aboveOut = above;
   }
 
   void split(const node::SampleRect& r, int processors, const std::vector<ScreenSegment>& pieces) {
