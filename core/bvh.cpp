@@ -27,10 +27,15 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading)
 template <class Real>
 BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects)
     : scene_(scene), shading_(shading), order_(std::move(objects)) {
-  std::vector<Box> boxes(scene.objects.size());
-  for (std::uint32_t o : order_) boxes[o] = boundsOf(scene.objects[o], kBoxPaddingRelativeOf<Real>);
+  std::vector<BuildItem> items;
+  items.reserve(order_.size());
+  for (std::uint32_t o : order_) {
+    const Box box = boundsOf(scene.objects[o], kBoxPaddingRelativeOf<Real>);
+    items.push_back(BuildItem{box, box.center(), o});
+  }
   nodes_.reserve(2 * order_.size() + 1);
-  if (!order_.empty()) build(boxes, 0, std::uint32_t(order_.size()), 0);
+  if (!items.empty()) build(items, 0, std::uint32_t(items.size()), 0);
+  for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].object;
 }
 
 namespace {
@@ -48,14 +53,14 @@ constexpr double kTraversalCost = 1.0;  // relative to one ray-object test
 
 // Binned surface-area heuristic over object centroids (Wald 2007); a leaf when no split pays.
 template <class Real>
-std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end,
+std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end,
                                     int depth) {
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   Box bounds, centroids;
   for (std::uint32_t i = begin; i < end; ++i) {
-    bounds.extend(boxes[order_[i]]);
-    centroids.extend(boxes[order_[i]].center());
+    bounds.extend(items[i].box);
+    centroids.extend(items[i].centre);
   }
   nodes_[index].box = bounds.template enclosingIn<Real>();
   const std::uint32_t count = end - begin;
@@ -66,8 +71,8 @@ std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin
   std::uint32_t binCounts[3][kBins] = {};
   const bool split = count > kLeafSize && depth < kMaxDepth;
   for (std::uint32_t i = begin; i < end && split; ++i) {
-    const Box& box = boxes[order_[i]];
-    const Vec3 centre = box.center();
+    const Box& box = items[i].box;
+    const Vec3& centre = items[i].centre;
     for (int axis = 0; axis < 3; ++axis) {
       const double lo = centroids.lo[axis], width = centroids.hi[axis] - lo;
       if (!(width > 0)) continue;
@@ -112,12 +117,12 @@ std::uint32_t BasicBvh<Real>::build(std::vector<Box>& boxes, std::uint32_t begin
     return index;
   }
   const double lo = centroids.lo[bestAxis], width = centroids.hi[bestAxis] - lo;
-  const auto midIt = std::partition(order_.begin() + begin, order_.begin() + end, [&](std::uint32_t o) {
-    return std::min(kBins - 1, int(kBins * (boxes[o].center()[bestAxis] - lo) / width)) <= bestBin;
+  const auto midIt = std::partition(items.begin() + begin, items.begin() + end, [&](const BuildItem& item) {
+    return std::min(kBins - 1, int(kBins * (item.centre[bestAxis] - lo) / width)) <= bestBin;
   });
-  const std::uint32_t mid = std::uint32_t(midIt - order_.begin());
-  build(boxes, begin, mid, depth + 1);
-  const std::uint32_t right = build(boxes, mid, end, depth + 1);
+  const std::uint32_t mid = std::uint32_t(midIt - items.begin());
+  build(items, begin, mid, depth + 1);
+  const std::uint32_t right = build(items, mid, end, depth + 1);
   nodes_[index].first = right;
   nodes_[index].axis = std::uint8_t(bestAxis);
   return index;

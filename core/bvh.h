@@ -42,7 +42,13 @@ class BasicBvh {
   // of overflowing it.
   static constexpr int kMaxDepth = 60;
   static constexpr int kStackSize = kMaxDepth + 2;
-  std::uint32_t build(std::vector<Box>& boxes, std::uint32_t begin, std::uint32_t end, int depth);
+  // An object as the build sees it, kept in build order so every pass reads memory in sequence.
+  struct BuildItem {
+    Box box;
+    Vec3 centre;
+    std::uint32_t object;
+  };
+  std::uint32_t build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end, int depth);
 
   const Scene& scene_;
   const Whitted& shading_;
