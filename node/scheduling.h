@@ -2,6 +2,7 @@
 // Every scheduling constant of the machine in one place, with its reason (as core/tolerances.h does for
 // numerical tolerances). None changes what is computed, only when: the image and the ray counts are the
 // same for any value. They matter because 16 to 64 logical processors and a host share two cores.
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 
@@ -29,9 +30,16 @@ inline constexpr SpinThenYield kNodeWait{4, 8};
 // not per block, since the host thread shares the two cores with every processor.
 inline constexpr auto kHostBatchingPause = std::chrono::microseconds(500);
 
-// Contributions per block a node ships to the host (3.4), and blocks it may have in flight before it
-// waits: enough for the host's batching pause at the machine's peak rate.
+// Contributions per block a node ships to the host (3.4), and blocks the processors of one host may have
+// in flight before they wait: enough for the host's batching pause at the machine's peak rate, which the
+// processors share (16 of them took 32 blocks each; 64 processors, a quarter of the rate each, holding as
+// many made the channel 16.8 MB of an 8x8 run's heap). At least kMinContributionBlocks each.
 inline constexpr std::size_t kContributionBlock = 256;
-inline constexpr std::size_t kContributionBlocksPerProcessor = 32;
+inline constexpr std::size_t kContributionBlocksPerHost = 512;
+inline constexpr std::size_t kMinContributionBlocks = 4;
+inline constexpr std::size_t contributionBlocksPerProcessor(std::size_t processors) {
+  return processors == 0 ? kMinContributionBlocks
+                         : std::max(kMinContributionBlocks, kContributionBlocksPerHost / processors);
+}
 
 }  // namespace raycube::node::scheduling

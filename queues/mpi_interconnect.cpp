@@ -189,7 +189,7 @@ MpiInterconnect<Real>::MpiInterconnect(const node::RegionMap& regions, MpiWiring
       scratch_(wiring_.rayBatch),
       creditPackets_(std::size_t(link.size())),
       localIds_(processorsOfRank(wiring_.rankOf, link.rank())),
-      contributions_(localIds_.size(), node::scheduling::kContributionBlocksPerProcessor, [&] {
+      contributions_(localIds_.size(), node::scheduling::contributionBlocksPerProcessor(localIds_.size()), [&] {
         std::vector<Doorbell*> bells;
         for (int p : localIds_) bells.push_back((bells_[p] = std::make_unique<Doorbell>()).get());
         return bells;

@@ -82,7 +82,8 @@ SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& 
         for (int p = 0; p < regions.processors(); ++p) bells.push_back(std::make_unique<Doorbell>());
         return bells;
       }()),
-      channel_(std::size_t(regions.processors()), node::scheduling::kContributionBlocksPerProcessor,
+      channel_(std::size_t(regions.processors()),
+               node::scheduling::contributionBlocksPerProcessor(std::size_t(regions.processors())),
                rawBells(bells_)) {
   const int processors = regions.processors();
   outgoing_.resize(std::size_t(processors));
