@@ -34,8 +34,8 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.heldObjects = setup_.database->size();
   stats_.cells = cells_.cellCount();
   stats_.bvh = structure_ == CellStructure::Bvh;
-  if (stats_.bvh || setup_.lightRays != LightRayMode::Messages)
-    databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading);
+  if (stats_.bvh) regionBvh_ = std::make_unique<const core::BasicBvh<Real>>(scene_, shading_, setup_.objects);
+  if (setup_.lightRays != LightRayMode::Messages) databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading);
   stats_.lightObjects = setup_.lightObjects;
   stats_.extraLightObjects = setup_.extraLightObjects;
 }
@@ -185,7 +185,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   double transmission = m.transmission;
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
-    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, databaseBvh_->bvh, hit, transmission)
+    return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *regionBvh_, hit, transmission)
                       : visitInterval(ray, ta, tb, objects, hit, transmission);
   };
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.

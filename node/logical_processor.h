@@ -128,11 +128,12 @@ class LogicalProcessor {
   SampleRect area_;
   CellStructure structure_;  // Paper or Bvh
   RegionCells cells_;
-  // Every object the processor holds, in one BVH: the region's with CellStructure::Bvh, and the light
-  // volumes' when light rays are traced where they start. Holding more than a query needs costs it nothing
-  // but box tests: an object outside the region (or off a light ray's segment) never has a hit in it.
-  // Shared with the processors holding the same database (see sharedBvhOf).
+  // Every object the processor holds, in one BVH, for light rays traced where they start (3.7.2). Holding
+  // more than a query needs costs it nothing but box tests: an object off a light ray's segment never has a
+  // hit on it. Shared with the processors holding the same database (see sharedBvhOf).
   std::shared_ptr<const DatabaseBvh<Real>> databaseBvh_;
+  // With CellStructure::Bvh, the region's own objects, the only ones a hit inside the region can be on.
+  std::unique_ptr<const core::BasicBvh<Real>> regionBvh_;
   long long nextPrimary_ = 0;
   std::atomic<std::uint64_t> segmentsEvaluated_{0};  // written by this node only, once per step that worked
   std::vector<Message> local_;                   // rays spawned here, still to evaluate here
