@@ -114,20 +114,12 @@ class MpiInterconnect<Real>::Endpoint final : public node::BasicTransport<Real> 
     net_.taskBell_.ring();
   }
 
-  bool hasToken() const override { return net_.mailboxes_[id_]->full.load(std::memory_order_acquire); }
-  bool receiveToken(node::Token& token) override {
-    Mailbox& box = *net_.mailboxes_[id_];
-    if (!box.full.load(std::memory_order_acquire)) return false;
-    token = box.token;
-    box.full.store(false, std::memory_order_release);
-    return true;
-  }
+  bool hasToken() const override { return net_.mailboxes_[id_]->holds(); }
+  bool receiveToken(node::Token& token) override { return net_.mailboxes_[id_]->take(token); }
   void passToken(const node::Token& token) override {
     const int next = (id_ + 1) % net_.regions_.processors();
     if (net_.local(next)) return net_.deliverToken(next, token);
-    net_.tokenOut_.to = next;  // only one token exists: the slot is empty here
-    net_.tokenOut_.token = token;
-    net_.tokenOut_.full.store(true, std::memory_order_release);
+    net_.tokenOut_.put(OutgoingToken{next, token});
     net_.taskBell_.ring();
   }
   void announceTermination() override {
@@ -251,9 +243,7 @@ QueueStats MpiInterconnect<Real>::outgoingStats(int processor, node::Face face) 
 
 template <class Real>
 void MpiInterconnect<Real>::deliverToken(int to, const node::Token& token) {
-  Mailbox& box = *mailboxes_[to];
-  box.token = token;  // only one token exists: the mailbox is empty here
-  box.full.store(true, std::memory_order_release);
+  mailboxes_[to]->put(token);
   bells_[to]->ring();
 }
 
@@ -345,9 +335,9 @@ bool MpiInterconnect<Real>::returnCredits(bool flushAll) {
 
 template <class Real>
 bool MpiInterconnect<Real>::forwardToken() {
-  if (!tokenOut_.full.load(std::memory_order_acquire)) return false;
-  link_.postValue(wiring_.rankOf[tokenOut_.to], Packet::Token, WireToken{tokenOut_.to, tokenOut_.token});
-  tokenOut_.full.store(false, std::memory_order_release);
+  OutgoingToken out;
+  if (!tokenOut_.take(out)) return false;
+  link_.postValue(wiring_.rankOf[out.to], Packet::Token, WireToken{out.to, out.token});
   return true;
 }
 

@@ -20,6 +20,7 @@
 #include "node/scheduling.h"
 #include "node/transport.h"
 #include "queues/doorbell.h"
+#include "queues/handoff_slot.h"
 #include "queues/host_channel.h"
 #include "queues/mpi_link.h"
 #include "queues/spsc_queue.h"
@@ -78,8 +79,9 @@ class MpiInterconnect {
   class Endpoint;
   struct RemoteOut;
   struct RemoteIn;
-  struct Mailbox {
-    std::atomic<bool> full{false};
+  using Mailbox = HandoffSlot<node::Token>;
+  struct OutgoingToken {
+    int to = 0;
     node::Token token;
   };
   // The communication task's doorbell: processors ring it when they hand it something; it also wakes up
@@ -128,11 +130,7 @@ class MpiInterconnect {
   std::vector<std::vector<char>> creditPackets_;  // per rank: credits waiting for an MPI message
   std::atomic<bool> terminated_{false};
   std::atomic<bool> announced_{false};
-  struct {
-    std::atomic<bool> full{false};
-    int to = 0;
-    node::Token token;
-  } tokenOut_;
+  HandoffSlot<OutgoingToken> tokenOut_;  // from a local processor to the communication task
   std::vector<int> localIds_;
   HostChannel<core::Contribution, node::scheduling::kContributionBlock> contributions_;
   std::vector<core::Contribution> contributionBlock_;

@@ -44,19 +44,11 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
   void sendContribution(const core::Contribution& c) override { sender_.send(c); }
   void flushContributions() override { sender_.flush(); }
 
-  bool hasToken() const override { return machine_.mailboxes_[id_]->full.load(std::memory_order_acquire); }
-  bool receiveToken(node::Token& token) override {
-    Mailbox& box = *machine_.mailboxes_[id_];
-    if (!box.full.load(std::memory_order_acquire)) return false;
-    token = box.token;
-    box.full.store(false, std::memory_order_release);
-    return true;
-  }
+  bool hasToken() const override { return machine_.mailboxes_[id_]->holds(); }
+  bool receiveToken(node::Token& token) override { return machine_.mailboxes_[id_]->take(token); }
   void passToken(const node::Token& token) override {
     const int next = (id_ + 1) % machine_.regions_.processors();
-    Mailbox& box = *machine_.mailboxes_[next];
-    box.token = token;  // only one token exists: the mailbox is empty here
-    box.full.store(true, std::memory_order_release);
+    machine_.mailboxes_[next]->put(token);
     machine_.bells_[next]->ring();
   }
   void announceTermination() override {

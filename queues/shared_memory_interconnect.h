@@ -12,6 +12,7 @@
 #include "node/scheduling.h"
 #include "node/transport.h"
 #include "queues/doorbell.h"
+#include "queues/handoff_slot.h"
 #include "queues/host_channel.h"
 #include "queues/spsc_queue.h"
 #include "queues/wait.h"
@@ -45,10 +46,7 @@ class SharedMemoryInterconnect {
 
  private:
   class Endpoint;
-  struct Mailbox {
-    std::atomic<bool> full{false};
-    node::Token token;
-  };
+  using Mailbox = HandoffSlot<node::Token>;
   RayQueue* queue(int from, int to) const;
 
   const node::RegionMap& regions_;
