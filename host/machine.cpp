@@ -384,17 +384,17 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
 
   // Only the emulated machine's links need the embedding; otherwise it is worked out during the synthesis.
   std::future<HypercubeEmbedding> embedding;
-  auto embed = [&] {
-    embedding = std::async(std::launch::async, [&] { return embedInHypercube(host.context.regions, machine); });
-  };
-  if (machine.emulate) {
-    embed();
-    recordEmbedding(embedding.get(), out);
-  }
+  std::function<void()> alongsideSynthesis = [] {};
+  if (machine.emulate)
+    recordEmbedding(embedInHypercube(host.context.regions, machine), out);
+  else
+    alongsideSynthesis = [&] {
+      embedding = std::async(std::launch::async, [&] { return embedInHypercube(host.context.regions, machine); });
+    };
   Accumulator accumulator(view);
-  MachineRun run = launch<Real>(host, machine, out.hypercubeNode, accumulator, progress, clock,
-                                machine.emulate ? std::function<void()>([] {}) : std::function<void()>(embed));
-  if (!machine.emulate) recordEmbedding(embedding.get(), out);
+  MachineRun run =
+      launch<Real>(host, machine, out.hypercubeNode, accumulator, progress, clock, alongsideSynthesis);
+  if (embedding.valid()) recordEmbedding(embedding.get(), out);
 
   RenderResult result;
   result.mode = "machine";
