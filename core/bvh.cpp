@@ -49,6 +49,20 @@ double halfArea(const Box& b) {
 constexpr int kBins = 16;
 constexpr double kTraversalCost = 1.0;  // relative to one ray-object test
 
+// Bins per unit of centroid extent along each axis; 0 where the centroids do not spread.
+Vec3 binScale(const Box& centroids, int bins) {
+  Vec3 scale;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double width = centroids.hi[axis] - centroids.lo[axis];
+    scale[axis] = width > 0 ? bins / width : 0.0;
+  }
+  return scale;
+}
+
+int binOf(double centre, double lo, double scale, int bins) {
+  return std::min(bins - 1, int((centre - lo) * scale));
+}
+
 }  // namespace
 
 // Binned surface-area heuristic over object centroids (Wald 2007); a leaf when no split pays.
@@ -66,31 +80,32 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
   const std::uint32_t count = end - begin;
   int bestAxis = -1, bestBin = 0;
   double bestCost = double(count);  // cost of a leaf, in object tests
+  // A bin per object in small nodes (no cost to set up bins nothing falls in), kBins in large ones.
+  const int bins = int(std::min<std::uint32_t>(count, kBins));
+  const bool split = count > kLeafSize && depth < kMaxDepth;
   // The three axes binned in one pass over the boxes (each box read once).
   Box binBoxes[3][kBins];
   std::uint32_t binCounts[3][kBins] = {};
-  const bool split = count > kLeafSize && depth < kMaxDepth;
+  const Vec3 scale = binScale(centroids, bins);
   for (std::uint32_t i = begin; i < end && split; ++i) {
     const Box& box = items[i].box;
     const Vec3& centre = items[i].centre;
     for (int axis = 0; axis < 3; ++axis) {
-      const double lo = centroids.lo[axis], width = centroids.hi[axis] - lo;
-      if (!(width > 0)) continue;
-      const int b = std::min(kBins - 1, int(kBins * (centre[axis] - lo) / width));
+      if (!(scale[axis] > 0)) continue;
+      const int b = binOf(centre[axis], centroids.lo[axis], scale[axis], bins);
       binBoxes[axis][b].extend(box);
       ++binCounts[axis][b];
     }
   }
   for (int axis = 0; axis < 3 && split; ++axis) {
-    const double width = centroids.hi[axis] - centroids.lo[axis];
-    if (!(width > 0)) continue;
+    if (!(scale[axis] > 0)) continue;
     const Box* binBox = binBoxes[axis];
     const std::uint32_t* binCount = binCounts[axis];
     double rightArea[kBins];
     std::uint32_t rightCount[kBins];
     Box acc;
     std::uint32_t n = 0;
-    for (int b = kBins - 1; b > 0; --b) {
+    for (int b = bins - 1; b > 0; --b) {
       acc.extend(binBox[b]);
       n += binCount[b];
       rightArea[b] = halfArea(acc);
@@ -98,7 +113,7 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
     }
     acc = Box{};
     n = 0;
-    for (int b = 0; b < kBins - 1; ++b) {
+    for (int b = 0; b < bins - 1; ++b) {
       acc.extend(binBox[b]);
       n += binCount[b];
       if (n == 0 || rightCount[b + 1] == 0) continue;
@@ -116,9 +131,9 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
     nodes_[index].count = count;
     return index;
   }
-  const double lo = centroids.lo[bestAxis], width = centroids.hi[bestAxis] - lo;
+  const double lo = centroids.lo[bestAxis], axisScale = scale[bestAxis];
   const auto midIt = std::partition(items.begin() + begin, items.begin() + end, [&](const BuildItem& item) {
-    return std::min(kBins - 1, int(kBins * (item.centre[bestAxis] - lo) / width)) <= bestBin;
+    return binOf(item.centre[bestAxis], lo, axisScale, bins) <= bestBin;
   });
   const std::uint32_t mid = std::uint32_t(midIt - items.begin());
   build(items, begin, mid, depth + 1);

@@ -7,25 +7,30 @@ namespace {
 constexpr std::uint32_t kLeafSize = 4;
 }
 
-BoxTree::BoxTree(const std::vector<core::Box>& boxes) : order_(boxes.size()) {
-  for (std::uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
-  nodes_.reserve(2 * order_.size() / kLeafSize + 2);
-  if (!order_.empty()) {
+BoxTree::BoxTree(const std::vector<core::Box>& boxes) {
+  std::vector<Item> items;
+  items.reserve(boxes.size());
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) items.push_back(Item{boxes[i], boxes[i].center(), i});
+  nodes_.reserve(2 * items.size() / kLeafSize + 2);
+  if (!items.empty()) {
     nodes_.push_back(Node{});
-    build(boxes, 0, std::uint32_t(order_.size()), 0);
+    build(items, 0, std::uint32_t(items.size()), 0);
   }
-  leafBoxes_.reserve(order_.size());
-  for (std::uint32_t o : order_) leafBoxes_.push_back(boxes[o]);
+  order_.reserve(items.size());
+  leafBoxes_.reserve(items.size());
+  for (const Item& item : items) {
+    order_.push_back(item.object);
+    leafBoxes_.push_back(item.box);
+  }
 }
 
-// Fills node `index` with boxes [begin, end) of order_. Median split of the centres along the widest axis:
-// balanced, so the depth is log2 of the count.
-void BoxTree::build(const std::vector<core::Box>& boxes, std::uint32_t begin, std::uint32_t end,
-                    std::uint32_t index) {
+// Fills node `index` with items [begin, end). Median split of the centres along the widest axis: balanced,
+// so the depth is log2 of the count.
+void BoxTree::build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index) {
   core::Box bounds, centres;
   for (std::uint32_t i = begin; i < end; ++i) {
-    bounds.extend(boxes[order_[i]]);
-    centres.extend(boxes[order_[i]].center());
+    bounds.extend(items[i].box);
+    centres.extend(items[i].centre);
   }
   nodes_[index].box = bounds;
   nodes_[index].begin = begin;
@@ -34,15 +39,15 @@ void BoxTree::build(const std::vector<core::Box>& boxes, std::uint32_t begin, st
   if (end - begin <= kLeafSize || !(std::max({extent.x, extent.y, extent.z}) > 0)) return;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                   [&](std::uint32_t a, std::uint32_t b) { return boxes[a].center()[axis] < boxes[b].center()[axis]; });
+  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                   [&](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
   // Children next to each other, their subtrees after them.
   const std::uint32_t children = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   nodes_.push_back(Node{});
   nodes_[index].children = children;
-  build(boxes, begin, mid, children);
-  build(boxes, mid, end, children + 1);
+  build(items, begin, mid, children);
+  build(items, mid, end, children + 1);
 }
 
 // Found indices are distinct: a light volume reaching most of the scene (the ground polygon's) is put in order

@@ -30,7 +30,13 @@ class BoxTree {
     std::uint32_t begin = 0, end = 0;  // the range of order_ its subtree holds
     std::uint32_t children = 0;        // inner: left child here, right child next; 0: a leaf
   };
-  void build(const std::vector<core::Box>& boxes, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
+  // A box as the build sees it, kept in build order so every pass reads memory in sequence.
+  struct Item {
+    core::Box box;
+    core::Vec3 centre;
+    std::uint32_t object;
+  };
+  void build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
   void sortAscending(std::vector<std::uint32_t>& found) const;
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> order_;  // object indices, leaves point into it

@@ -139,6 +139,20 @@ void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::
   });
 }
 
+std::vector<core::Box> eyeFrameBoxesOf(const std::vector<node::EyeBox>& boxes) {
+  std::vector<core::Box> out;
+  out.reserve(boxes.size());
+  for (const node::EyeBox& b : boxes) out.push_back(core::Box{b.lo, b.hi});
+  return out;
+}
+
+std::vector<core::Box> worldBoxesOf(const core::Scene& scene) {
+  std::vector<core::Box> out;
+  out.reserve(scene.objects.size());
+  for (const core::Object& o : scene.objects) out.push_back(core::boundsOf(o, core::kCellMarginRelative));
+  return out;
+}
+
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
@@ -151,13 +165,9 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const c
   for (std::uint32_t o = 0; o < boxes.size(); ++o)
     if (node::reachesBehindEye(boxes[o])) rear.push_back(o);
   // Spatial queries: the objects' eye boxes for the regions, their world boxes for the light volumes.
-  std::vector<core::Box> eyeFrame, world;
-  for (const node::EyeBox& b : boxes) eyeFrame.push_back(core::Box{b.lo, b.hi});
-  const BoxTree inEyeFrame(eyeFrame);
   const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
-  if (lightVolumes)
-    for (const core::Object& o : scene.objects) world.push_back(core::boundsOf(o, core::kCellMarginRelative));
-  const BoxTree inWorld(world);
+  const BoxTree inEyeFrame(eyeFrameBoxesOf(boxes));
+  const BoxTree inWorld(lightVolumes ? worldBoxesOf(scene) : std::vector<core::Box>{});
   std::vector<std::vector<std::uint32_t>> rearLightObjects;
   node::LightSources rearSources;
   // Eye rays meet objects only in front of the eye: without reflected or refracted rays, no light ray starts
@@ -382,12 +392,13 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   out.settings = machine;
   HostPreparation host = prepare(scene, view, settings, machine, progress, out.preprocessing);
 
-  // Only the emulated machine's links need the embedding; otherwise it is worked out during the synthesis.
+  // Only the emulated machine's links need the embedding; otherwise it is worked out during the synthesis, if
+  // the report wants it.
   std::future<HypercubeEmbedding> embedding;
   std::function<void()> alongsideSynthesis = [] {};
   if (machine.emulate)
     recordEmbedding(embedInHypercube(host.context.regions, machine), out);
-  else
+  else if (machine.mapHypercube)
     alongsideSynthesis = [&] {
       embedding = std::async(std::launch::async, [&] { return embedInHypercube(host.context.regions, machine); });
     };

@@ -38,6 +38,10 @@ struct MachineSettings {
   std::optional<EmulatedPlatform> emulate;  // set: run on SimGrid in that machine's simulated time
   bool mpi = false;         // run the processors on the other ranks of MPI_COMM_WORLD (host/mpi_machine.h)
   std::size_t rayBatch = 16;  // MPI: rays per message to one rank, at most
+  // Embed the regions in the hypercube (3.7.1) for the report, during the synthesis, when not emulating; the
+  // emulated machine always does, its links need it. Off by default: the BSP's heuristic costs up to 0.1 s
+  // of CPU at 8 x 8, which a short run on few cores feels, for figures only the emulated machine uses.
+  bool mapHypercube = false;
 };
 
 struct ProcessorReport {
@@ -104,7 +108,8 @@ struct MachineReport {
   // metric used to partition; and how many rays were sub-sampled.
   std::vector<double> estimatedLoad;
   std::uint64_t subsampledRays = 0;
-  // The regions on the iPSC's hypercube: node number per processor, and hops per adjacency edge.
+  // The regions on the iPSC's hypercube: node number per processor, and hops per adjacency edge. Empty when
+  // not mapped (settings.mapHypercube false and not emulating).
   std::vector<std::uint32_t> hypercubeNode;
   double dilationMean = 0;
   int dilationMax = 0;

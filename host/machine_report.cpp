@@ -64,17 +64,19 @@ std::string machineTable(const MachineReport& report) {
       report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes,
       byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused);
   const LoadBalance balance = loadBalanceOf(report);
-  text += fmt::format(
-      "  termination: {} token rounds, {} token passes; hypercube of dimension {}: {} adjacencies, "
-      "dilation mean {:.2f} max {}\n",
-      report.tokenRounds, report.tokenPasses, report.hypercubeDimension, report.adjacencyEdges,
-      report.dilationMean, report.dilationMax);
+  const bool mapped = !report.hypercubeNode.empty();
+  text += fmt::format("  termination: {} token rounds, {} token passes; ", report.tokenRounds, report.tokenPasses);
+  text += mapped ? fmt::format("hypercube of dimension {}: {} adjacencies, dilation mean {:.2f} max {}\n",
+                               report.hypercubeDimension, report.adjacencyEdges, report.dilationMean,
+                               report.dilationMax)
+                 : std::string("hypercube not mapped (only the emulated machine, --emulate, needs it)\n");
   const PreprocessingSeconds& pre = report.preprocessing;
-  text += fmt::format(
-      "  preprocessing: sampling {:.3f} s, partitioning {:.3f} s, pruning {:.3f} s, cells {:.3f} s; hypercube "
-      "mapping {:.3f} s{}\n",
-      pre.sampling, pre.partitioning, pre.pruning, pre.cells, pre.mapping,
-      report.settings.emulate ? "" : " (during the synthesis)");
+  text += fmt::format("  preprocessing: sampling {:.3f} s, partitioning {:.3f} s, pruning {:.3f} s, cells {:.3f} s",
+                      pre.sampling, pre.partitioning, pre.pruning, pre.cells);
+  if (mapped)
+    text += fmt::format("; hypercube mapping {:.3f} s{}", pre.mapping,
+                        report.settings.emulate ? "" : " (during the synthesis)");
+  text += "\n";
   text += fmt::format(
       "  load ({}, {} metric, sub-sampling {}x{}): rays processed max/mean {:.2f} min/mean {:.2f}; cost "
       "max/mean "
@@ -159,7 +161,8 @@ nlohmann::json machineJson(const MachineReport& report) {
             {"mapping", report.preprocessing.mapping},
             {"mappingDuringSynthesis", !report.settings.emulate}}},
           {"hypercube",
-           {{"dimension", report.hypercubeDimension},
+           {{"mapped", !report.hypercubeNode.empty()},
+            {"dimension", report.hypercubeDimension},
             {"nodeOfProcessor", report.hypercubeNode},
             {"adjacencyEdges", report.adjacencyEdges},
             {"dilationMean", report.dilationMean},

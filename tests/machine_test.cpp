@@ -437,6 +437,7 @@ TEST(MachineTest, PreprocessingPhasesLieWithinThePreprocessingTime) {
   const core::Scene scene = core::makeBalls(2);
   MachineSettings machine = machineFor({4, 4}, 8);
   machine.balance = Balance::Bsp;
+  machine.mapHypercube = true;
   MachineReport report;
   const RenderResult result = renderMachine(scene, settingsFor(32), machine, &report);
   const PreprocessingSeconds& pre = report.preprocessing;
@@ -446,6 +447,26 @@ TEST(MachineTest, PreprocessingPhasesLieWithinThePreprocessingTime) {
   EXPECT_EQ(json.at("pruning").get<double>(), pre.pruning);
   EXPECT_TRUE(json.at("mappingDuringSynthesis").get<bool>());
   EXPECT_NE(machineTable(report).find("hypercube mapping"), std::string::npos);
+}
+
+// Only the emulated machine's links need the hypercube embedding: a run that does not ask for it in its
+// report skips it (the BSP's heuristic is a tenth of a second of CPU at 8 x 8) and says so, with the same
+// image.
+TEST(MachineTest, HypercubeMappedOnlyWhenAskedOrEmulated) {
+  const core::Scene scene = core::makeBalls(2);
+  MachineSettings machine = machineFor({4, 4}, 8);
+  machine.balance = Balance::Bsp;
+  machine.mapHypercube = true;
+  MachineReport mapped, unmapped;
+  const RenderResult withMap = renderMachine(scene, settingsFor(32), machine, &mapped);
+  machine.mapHypercube = false;
+  const RenderResult withoutMap = renderMachine(scene, settingsFor(32), machine, &unmapped);
+  EXPECT_EQ(mapped.hypercubeNode.size(), 16u);
+  EXPECT_GT(mapped.dilationMean, 0);
+  EXPECT_TRUE(unmapped.hypercubeNode.empty());
+  EXPECT_NE(machineTable(unmapped).find("hypercube not mapped"), std::string::npos);
+  EXPECT_FALSE(machineJson(unmapped).at("hypercube").at("mapped").get<bool>());
+  EXPECT_TRUE(withMap.image.pixels == withoutMap.image.pixels);
 }
 
 TEST(MachineTest, MoreProcessorsThanSampleRowsOrColumnsThrows) {
