@@ -5,19 +5,39 @@
 
 namespace raycube::node {
 
+namespace {
+
+// One database's tree: built by the first processor that asks, while the others holding that database wait
+// on this slot alone. Processors holding other databases build theirs at the same time.
+template <class Real>
+struct TreeSlot {
+  std::mutex building;
+  std::weak_ptr<const DatabaseBvh<Real>> tree;
+};
+
+}  // namespace
+
 template <class Real>
 std::shared_ptr<const DatabaseBvh<Real>> sharedBvhOf(const std::shared_ptr<const RegionDatabase>& database,
                                                      const core::ShadingOptions& options) {
   // A tree keeps its database alive, so a database's address names one database while its tree lives.
   static std::mutex mutex;
-  static std::map<const RegionDatabase*, std::weak_ptr<const DatabaseBvh<Real>>> trees;
-  const std::lock_guard lock(mutex);  // processors built at once wait for the one building their tree
-  std::erase_if(trees, [](const auto& entry) { return entry.second.expired(); });
-  std::weak_ptr<const DatabaseBvh<Real>>& entry = trees[database.get()];
-  std::shared_ptr<const DatabaseBvh<Real>> tree = entry.lock();
+  static std::map<const RegionDatabase*, std::shared_ptr<TreeSlot<Real>>> slots;
+  std::shared_ptr<TreeSlot<Real>> slot;
+  {
+    const std::lock_guard lock(mutex);
+    // A slot nobody holds and whose tree is gone serves no one (use_count only falls outside the lock, so
+    // a stale count keeps a slot one call longer, never drops a slot in use).
+    std::erase_if(slots, [](const auto& entry) { return entry.second.use_count() == 1 && entry.second->tree.expired(); });
+    std::shared_ptr<TreeSlot<Real>>& entry = slots[database.get()];
+    if (!entry) entry = std::make_shared<TreeSlot<Real>>();
+    slot = entry;
+  }
+  const std::lock_guard building(slot->building);
+  std::shared_ptr<const DatabaseBvh<Real>> tree = slot->tree.lock();
   if (!tree) {
     tree = std::make_shared<const DatabaseBvh<Real>>(database, options);
-    entry = tree;
+    slot->tree = tree;
   }
   return tree;
 }
