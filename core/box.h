@@ -63,9 +63,10 @@ struct InverseDirection {
 // Robust slab test (Ize, "Robust BVH ray traversal", 2013): the far distance is widened by 2 gamma(3) of the
 // precision so rounding never culls a true hit. A NaN from (0 * inf), an origin exactly on the plane of a
 // slab the ray runs parallel to, fails every comparison and leaves [t0, t1] unconstrained by that slab.
+// [tEnter, tExit]: the part of [tMin, tMax] inside the box, when there is one.
 template <class Real>
-inline bool slabsHit(const BasicBox<Real>& box, const Vec3Of<Real>& origin, const InverseDirection<Real>& id,
-                     Real tMin, Real tMax, Real& tEnter) {
+inline bool slabsSpan(const BasicBox<Real>& box, const Vec3Of<Real>& origin, const InverseDirection<Real>& id,
+                      Real tMin, Real tMax, Real& tEnter, Real& tExit) {
   constexpr Real kWidening = 1 + 2 * 3 * (std::numeric_limits<Real>::epsilon() / 2);
   const Vec3Of<Real>* planes = &box.lo;  // planes[0] = lo, planes[1] = hi
   Real t0 = tMin, t1 = tMax;
@@ -76,7 +77,15 @@ inline bool slabsHit(const BasicBox<Real>& box, const Vec3Of<Real>& origin, cons
     t1 = tFar < t1 ? tFar : t1;
   }
   tEnter = t0;
+  tExit = t1;
   return t0 <= t1;
+}
+
+template <class Real>
+inline bool slabsHit(const BasicBox<Real>& box, const Vec3Of<Real>& origin, const InverseDirection<Real>& id,
+                     Real tMin, Real tMax, Real& tEnter) {
+  Real tExit;
+  return slabsSpan(box, origin, id, tMin, tMax, tEnter, tExit);
 }
 
 }  // namespace raycube::core

@@ -50,6 +50,29 @@ void BoxTree::build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t
   build(items, mid, end, children + 1);
 }
 
+std::vector<core::Box> BoxTree::cover(std::size_t most) const {
+  if (nodes_.empty()) return {};
+  const auto area = [&](std::uint32_t n) {
+    const core::Vec3 e = nodes_[n].box.extent();
+    return e.x * e.y + e.y * e.z + e.z * e.x;
+  };
+  std::vector<std::uint32_t> frontier{0};
+  for (;;) {
+    // The largest node with children, opened into them while the cover has room for one more box.
+    std::size_t widest = frontier.size();
+    for (std::size_t i = 0; i < frontier.size(); ++i)
+      if (nodes_[frontier[i]].children != 0 && (widest == frontier.size() || area(frontier[i]) > area(frontier[widest])))
+        widest = i;
+    if (widest == frontier.size() || frontier.size() + 1 > most) break;
+    const std::uint32_t children = nodes_[frontier[widest]].children;
+    frontier[widest] = children;
+    frontier.push_back(children + 1);
+  }
+  std::vector<core::Box> boxes;
+  for (std::uint32_t n : frontier) boxes.push_back(nodes_[n].box);
+  return boxes;
+}
+
 // Found indices are distinct: a light volume reaching most of the scene (the ground polygon's) is put in order
 // by marking them, in time linear in the objects; a few by sorting them.
 void BoxTree::sortAscending(std::vector<std::uint32_t>& found) const {

@@ -24,6 +24,10 @@ class BoxTree {
     return query(mayHold, [](const core::Box&) { return false; });
   }
 
+  // At most `most` boxes (at least one, unless the tree is empty) that together hold every box: the tree's
+  // nodes, opening the largest first, so the cover hugs the boxes as closely as that many boxes can.
+  std::vector<core::Box> cover(std::size_t most) const;
+
  private:
   struct Node {
     core::Box box;

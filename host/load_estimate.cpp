@@ -8,6 +8,7 @@
 #include "core/bvh.h"
 #include "core/ray_tree.h"
 #include "host/parallel_for.h"
+#include "node/scene_bounds.h"
 
 namespace raycube::host {
 namespace {
@@ -61,7 +62,8 @@ bool projectSegment(const core::View& view, const core::Ray& ray, double t1, dou
 }  // namespace
 
 LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
-                         int window, LoadMetric metric, bool lightRaysWhereTheyStart) {
+                         int window, LoadMetric metric, bool lightRaysWhereTheyStart,
+                         const std::vector<core::Box>& sceneBounds) {
   const core::Bvh database(scene, shading);
   const double zNear = std::max(view.hither(), 1e-9 * (1 + glm::length(view.eye())));
   // One sample per window, at its centre (3.7.1: "choosing one pixel in each window"); the rows of windows
@@ -77,6 +79,10 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
       ++row.raysTraced;
       ScreenSegment s;
       const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Light;
+      if (!point && !sceneBounds.empty())
+        tEnd = std::min(tEnd, node::lastInsideBounds(sceneBounds, core::Vec3(ray.ray.origin),
+                                                     core::Vec3(ray.ray.direction), ray.ray.tMin, tEnd)
+                                  .value_or(ray.ray.tMin));
       if (!projectSegment(view, ray.ray, point ? ray.ray.tMin : tEnd, zNear, s)) return;
       s.work = double(work);
       s.weight = metric == LoadMetric::Rays ? 1.0 : 1 + s.work;

@@ -33,9 +33,12 @@ struct LoadSample {
 };
 
 // lightRaysWhereTheyStart: with light cones or pyramids (3.7.2) a light ray is processed only where it
-// starts, so it weighs on that point of the screen instead of along its path.
+// starts, so it weighs on that point of the screen instead of along its path. sceneBounds: where the
+// machine ends rays that leave the scene (node/scene_bounds.h), so a segment ends there too; none: at
+// the screen's edge.
 LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
-                         int window, LoadMetric metric, bool lightRaysWhereTheyStart);
+                         int window, LoadMetric metric, bool lightRaysWhereTheyStart,
+                         const std::vector<core::Box>& sceneBounds = {});
 
 // Every ray the whole image will trace, eye rays and all their descendants, extrapolated from the
 // sub-sampled pixels' trees (each stands for its window, and for every ray per pixel): the total work a

@@ -19,6 +19,7 @@
 #include "host/machine_checks.h"
 #include "host/machine_progress.h"
 #include "host/parallel_for.h"
+#include "node/scheduling.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
 #include "host/box_tree.h"
@@ -153,12 +154,21 @@ std::vector<core::Box> worldBoxesOf(const core::Scene& scene) {
   return out;
 }
 
+// Where the scene lies: a few boxes holding every object's world box (padded as the cells pad them),
+// widened for a float ray's hit error.
+std::vector<core::Box> sceneBoundsOf(const BoxTree& inWorld, const core::Scene& scene) {
+  const double floatHitError = core::kFloatHitErrorRelative * 2 * scene.largestCoordinate();
+  std::vector<core::Box> bounds = inWorld.cover(node::scheduling::kSceneBoundsBoxes);
+  for (core::Box& b : bounds) b = core::Box{b.lo - floatHitError, b.hi + floatHitError};
+  return bounds;
+}
+
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
 std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const core::View& view,
                                            const node::RegionMap& regions, const node::ScreenLines& lines,
-                                           const std::vector<node::EyeBox>& boxes,
+                                           const std::vector<node::EyeBox>& boxes, const BoxTree& inWorld,
                                            const MachineSettings& machine) {
   const core::Scene& scene = shading.scene();
   std::vector<std::uint32_t> rear;
@@ -167,7 +177,6 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const c
   // Spatial queries: the objects' eye boxes for the regions, their world boxes for the light volumes.
   const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
   const BoxTree inEyeFrame(eyeFrameBoxesOf(boxes));
-  const BoxTree inWorld(lightVolumes ? worldBoxesOf(scene) : std::vector<core::Box>{});
   std::vector<std::vector<std::uint32_t>> rearLightObjects;
   node::LightSources rearSources;
   // Eye rays meet objects only in front of the eye: without reflected or refracted rays, no light ray starts
@@ -325,17 +334,24 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
                         const MachineSettings& machine, Progress& progress, PreprocessingSeconds& seconds) {
   Laps laps;
   const core::Whitted shading(scene, settings.shading);
-  LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric,
-                                  machine.lightRays != node::LightRayMode::Messages);
+  // The objects' world boxes: for where the scene lies (unless rays travel on to the screen's edge, as the
+  // emulated paper's machine's do) and for the light volumes.
+  const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
+  const bool endRaysLeavingScene = machine.endRaysLeavingScene && !machine.emulate;
+  const BoxTree inWorld(lightVolumes || endRaysLeavingScene ? worldBoxesOf(scene) : std::vector<core::Box>{});
+  std::vector<core::Box> sceneBounds;
+  if (endRaysLeavingScene) sceneBounds = sceneBoundsOf(inWorld, scene);
+  LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric, lightVolumes,
+                                  sceneBounds);
   seconds.sampling = laps.next();
-  node::MachineContext context{view, settings.shading, partition(view, load, machine)};
+  node::MachineContext context{view, settings.shading, partition(view, load, machine), std::move(sceneBounds)};
   seconds.partitioning = laps.next();
   progress.phase("pruning");
   std::vector<node::EyeBox> boxes;
   const double sceneExtent = 2 * scene.largestCoordinate();
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
   std::vector<node::NodeSetup> setups = pruneDatabase(shading, view, context.regions, context.lines(), boxes,
-                                                      machine);
+                                                      inWorld, machine);
   seconds.pruning = laps.next();
   return {std::move(load), std::move(context), std::move(setups)};
 }

@@ -42,6 +42,10 @@ struct MachineSettings {
   // emulated machine always does, its links need it. Off by default: the BSP's heuristic costs up to 0.1 s
   // of CPU at 8 x 8, which a short run on few cores feels, for figures only the emulated machine uses.
   bool mapHypercube = false;
+  // A ray leaving its region beyond the scene's bounds ends there (node/scene_bounds.h) instead of crossing
+  // empty regions to the screen's edge; the emulated machine keeps the paper's rays, whose costs table 2
+  // was fitted to, whatever this says.
+  bool endRaysLeavingScene = true;
 };
 
 struct ProcessorReport {

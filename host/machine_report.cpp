@@ -52,17 +52,18 @@ LoadBalance loadBalanceOf(const MachineReport& report) {
 }
 
 std::string machineTable(const MachineReport& report) {
-  std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0;
+  std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0, leftScene = 0;
   for (const ProcessorReport& p : report.processors) {
     for (int k = 0; k < core::kRayKinds; ++k) byKind[k] += p.node.messagesByKind[k];
     forwarded += p.node.forwarded;
+    leftScene += p.node.leftScene;
     refused += p.node.refusedPushes;
   }
   std::string text = fmt::format(
       "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, light {}; "
-      "forwarded {}; refused pushes {}\n",
+      "forwarded {}; refused pushes {}; rays ended leaving the scene's bounds {}\n",
       report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes,
-      byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused);
+      byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused, leftScene);
   const LoadBalance balance = loadBalanceOf(report);
   const bool mapped = !report.hypercubeNode.empty();
   text += fmt::format("  termination: {} token rounds, {} token passes; ", report.tokenRounds, report.tokenPasses);
@@ -141,6 +142,7 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"contributions", n.processed.contributions},
                           {"faces(left,right,up,down)", faces},
                           {"forwarded", n.forwarded},
+                          {"leftScene", n.leftScene},
                           {"refusedPushes", n.refusedPushes},
                           {"overflowHighWater", n.overflowHighWater},
                           {"idleSeconds", p.idleSeconds},

@@ -93,6 +93,7 @@ void writeContext(WireWriter& out, const node::MachineContext& context) {
   for (int p = 0; p < context.regions.processors(); ++p) areas.push_back(context.regions.areaOf(p));
   out.vector(areas);
   out.value(context.regions.gridColumns());
+  out.vector(context.sceneBounds);
 }
 
 node::MachineContext readContext(WireReader& in) {
@@ -100,8 +101,9 @@ node::MachineContext readContext(WireReader& in) {
   const auto shading = in.value<core::ShadingOptions>();
   auto areas = in.vector<node::SampleRect>();
   const int gridColumns = in.value<int>();
-  return node::MachineContext{view, shading,
-                              node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns)};
+  auto sceneBounds = in.vector<core::Box>();
+  return node::MachineContext{view, shading, node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns),
+                              std::move(sceneBounds)};
 }
 
 // ---- A processor's setup (3.2 step 2, 3.7.2).

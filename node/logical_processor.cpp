@@ -5,6 +5,7 @@
 
 #include "core/ray_tree.h"
 #include "core/transmission.h"
+#include "node/scene_bounds.h"
 #include "node/scheduling.h"
 
 namespace raycube::node {
@@ -191,6 +192,10 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
   auto lastPart = [&](double tEnd) { return tEnd >= tMax || er.partEnd(t) == core::kInfinity; };
   auto leaveFor = [&](int owner, double tExit) {
+    if (beyondScene(ray.ray, tExit, tMax)) {
+      ++stats_.leftScene;
+      return finishRay(ray, hit, transmission);
+    }
     m.tEnter = tExit;
     m.transmission = transmission;
     m.destination = std::uint16_t(owner);
@@ -223,6 +228,15 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     if (result == WalkResult::Stopped || lastPart(tEnd)) return finishRay(ray, hit, transmission);
     t = tEnd;  // on to the rear part
   }
+}
+
+// Whether the ray's part [t, tMax] misses every object of the scene: it leaves the scene's bounds for good.
+// The boxes are padded well beyond any hit's rounding, so nothing ruled out could have been hit: the ray
+// ends here as it would have ended at the screen's edge, regions later.
+template <class Real>
+bool LogicalProcessor<Real>::beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const {
+  return !context_.sceneBounds.empty() &&
+         !lastInsideBounds(context_.sceneBounds, core::Vec3(ray.origin), core::Vec3(ray.direction), t, tMax);
 }
 
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of

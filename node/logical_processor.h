@@ -65,6 +65,7 @@ struct NodeStats {
   std::array<std::uint64_t, core::kRayKinds> messagesByKind{};  // rays sent to a neighbour, by kind
   std::array<std::uint64_t, kFaces> sent{}, received{};
   std::uint64_t forwarded = 0;      // messages passed on towards a non-adjacent destination (hops)
+  std::uint64_t leftScene = 0;      // rays ended where they left their region, beyond the scene's bounds
   std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
   std::uint64_t overflowHighWater = 0;
   std::uint64_t tokenVisits = 0;
@@ -104,6 +105,7 @@ class LogicalProcessor {
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
   bool tracedWhereItStarts(const Message& message, double& transmission);
+  bool beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const;
   template <class Objects>
   bool visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects, core::Hit& hit,
                      double& transmission);

@@ -3,6 +3,9 @@
 // the screen's partition; the objects each processor holds come in its own NodeSetup (RegionDatabase).
 // Values only, so a host can send it to a node in another address space (an MPI rank); processors in one
 // address space share one.
+#include <vector>
+
+#include "core/box.h"
 #include "core/view.h"
 #include "core/whitted.h"
 #include "node/region_map.h"
@@ -13,6 +16,11 @@ struct MachineContext {
   core::View view;
   core::ShadingOptions shading;
   RegionMap regions;  // owns its screen lines
+  // Where the scene's objects lie: a few world boxes holding them all, padded as the cells pad them (and
+  // for float hits); none when rays are to travel on to the screen's edge as in the paper (the emulated
+  // machine). A ray leaving its region that cannot meet these boxes again ends there, not after crossing
+  // empty regions.
+  std::vector<core::Box> sceneBounds;
   const ScreenLines& lines() const { return regions.lines(); }
 };
 

@@ -17,6 +17,10 @@ inline constexpr std::size_t kInboxBatch = 32;
 // cycle of full FIFOs always drains (2.2); the limit only bounds the overflow lists.
 inline constexpr std::size_t kBacklogLimit = 64;
 
+// Where the scene lies, for a ray leaving its region (MachineContext::sceneBounds): this many world boxes
+// at most, each slab test a few nanoseconds against a message's microsecond.
+inline constexpr std::size_t kSceneBoundsBoxes = 16;
+
 // How a waiting thread waits: spin a little (a handoff from the other core), yield so the thread that
 // would unblock it can run, then sleep on its doorbell.
 struct SpinThenYield {

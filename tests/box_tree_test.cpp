@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 namespace raycube::host {
@@ -44,6 +45,43 @@ TEST(BoxTree, QueryFindsWhatTestingEveryBoxFinds) {
     }
     EXPECT_EQ(tree.query([](const core::Box&) { return true; }).size(), boxes.size());
   }
+}
+
+bool contains(const core::Box& outer, const core::Box& inner) {
+  for (int k = 0; k < 3; ++k)
+    if (inner.lo[k] < outer.lo[k] || inner.hi[k] > outer.hi[k]) return false;
+  return true;
+}
+
+double volumeOf(const std::vector<core::Box>& boxes) {
+  double v = 0;
+  for (const core::Box& b : boxes) v += b.extent().x * b.extent().y * b.extent().z;
+  return v;
+}
+
+// Where the scene lies (node/scene_bounds.h): at most the boxes asked for, every box inside one of them, and
+// two boxes for two far-apart clusters, not one box spanning both.
+TEST(BoxTree, CoverHoldsEveryBoxInAtMostTheBoxesAsked) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> at(0, 10), size(0, 1);
+  std::vector<core::Box> boxes;
+  for (int i = 0; i < 500; ++i) {
+    const core::Vec3 lo = core::Vec3(at(rng), at(rng), at(rng)) + core::Vec3(i % 2 ? 1000 : 0, 0, 0);
+    boxes.push_back(core::Box{lo, lo + core::Vec3(size(rng), size(rng), size(rng))});
+  }
+  const BoxTree tree(boxes);
+  EXPECT_TRUE(BoxTree({}).cover(16).empty());
+  std::vector<double> volumes;
+  for (std::size_t most : {1u, 2u, 16u, 64u}) {
+    const std::vector<core::Box> cover = tree.cover(most);
+    ASSERT_GE(cover.size(), 1u);
+    EXPECT_LE(cover.size(), most);
+    for (const core::Box& b : boxes)
+      EXPECT_TRUE(std::any_of(cover.begin(), cover.end(), [&](const core::Box& c) { return contains(c, b); }))
+          << most;
+    volumes.push_back(volumeOf(cover));
+  }
+  EXPECT_LT(volumes[1], volumes[0] / 20);  // the two clusters apart, not the box of both
 }
 
 }  // namespace

@@ -469,6 +469,39 @@ TEST(MachineTest, HypercubeMappedOnlyWhenAskedOrEmulated) {
   EXPECT_TRUE(withMap.image.pixels == withoutMap.image.pixels);
 }
 
+// A ray leaving its region beyond the scene's bounds ends there: fewer messages, the same image, every ray
+// still finished once; with the paper's rays (as the emulated machine has them) none ends early.
+TEST(MachineTest, RaysLeavingTheSceneEndWhereTheyLeaveIt) {
+  const core::Scene scene = core::makeBalls(2);
+  const RenderSettings settings = settingsFor(32);
+  const RenderResult reference = renderReference(scene, settings);
+  auto messages = [](const MachineReport& r) {
+    std::uint64_t sent = 0, leftScene = 0;
+    for (const ProcessorReport& p : r.processors) {
+      for (std::uint64_t m : p.node.messagesByKind) sent += m;
+      leftScene += p.node.leftScene;
+    }
+    return std::pair{sent, leftScene};
+  };
+  for (node::LightRayMode light : {node::LightRayMode::Messages, node::LightRayMode::Pyramid}) {
+    MachineSettings machine = machineFor({4, 4}, 8);
+    machine.lightRays = light;
+    MachineReport ending, travelling;
+    const RenderResult ended = renderMachine(scene, settings, machine, &ending);
+    machine.endRaysLeavingScene = false;
+    const RenderResult travelled = renderMachine(scene, settings, machine, &travelling);
+    EXPECT_TRUE(core::bitIdentical(ended.image, reference.image));
+    EXPECT_TRUE(core::bitIdentical(travelled.image, reference.image));
+    EXPECT_EQ(ended.counters.rays, reference.counters.rays);
+    EXPECT_EQ(travelled.counters.rays, reference.counters.rays);
+    const auto [sentEnding, leftEnding] = messages(ending);
+    const auto [sentTravelling, leftTravelling] = messages(travelling);
+    EXPECT_GT(leftEnding, 0u);
+    EXPECT_EQ(leftTravelling, 0u);
+    EXPECT_LT(sentEnding, sentTravelling);
+  }
+}
+
 TEST(MachineTest, MoreProcessorsThanSampleRowsOrColumnsThrows) {
   const core::Scene scene = core::makeBalls(1);
   const RenderSettings settings = settingsFor(8);

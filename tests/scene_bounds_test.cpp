@@ -1,0 +1,37 @@
+// Where the scene lies (node/scene_bounds.h): the last t at which a ray is inside one of the boxes, from a
+// given t on, or none when it meets none of them there.
+#include "node/scene_bounds.h"
+
+#include <gtest/gtest.h>
+
+namespace raycube::node {
+namespace {
+
+const std::vector<core::Box> kTwoBoxes{core::Box{{1, -1, -1}, {2, 1, 1}}, core::Box{{5, -1, -1}, {6, 1, 1}}};
+
+TEST(SceneBounds, LastInsideIsTheFarthestExitAhead) {
+  const core::Vec3 origin(0, 0, 0), alongX(1, 0, 0);
+  EXPECT_NEAR(*lastInsideBounds(kTwoBoxes, origin, alongX, 0, core::kInfinity), 6, 1e-12);
+  EXPECT_NEAR(*lastInsideBounds(kTwoBoxes, origin, alongX, 0, 3), 2, 1e-12);  // the far box beyond tMax
+  EXPECT_NEAR(*lastInsideBounds(kTwoBoxes, origin, alongX, 5.5, core::kInfinity), 6, 1e-12);
+}
+
+TEST(SceneBounds, NoneWhenTheRayMeetsNoBoxAhead) {
+  const core::Vec3 origin(0, 0, 0);
+  EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(1, 0, 0), 6.5, core::kInfinity));  // past both
+  EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(-1, 0, 0), 0, core::kInfinity));   // away
+  EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(0, 1, 0), 0, core::kInfinity));    // beside
+  EXPECT_FALSE(lastInsideBounds({}, origin, core::Vec3(1, 0, 0), 0, core::kInfinity));           // no scene
+  // Between the boxes, up to tMax short of the next one.
+  EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(1, 0, 0), 3, 4));
+}
+
+// A ray along a box's face, or parallel to a slab it lies in, is inside (the slab test's NaNs leave that
+// slab unconstrained): conservative, never a ray ended that could touch a box.
+TEST(SceneBounds, RaysGrazingABoxCountAsInside) {
+  EXPECT_TRUE(lastInsideBounds(kTwoBoxes, core::Vec3(0, 1, 0), core::Vec3(1, 0, 0), 0, core::kInfinity));
+  EXPECT_TRUE(lastInsideBounds(kTwoBoxes, core::Vec3(1, 0, 0), core::Vec3(0, 0, 1), 0, core::kInfinity));
+}
+
+}  // namespace
+}  // namespace raycube::node
