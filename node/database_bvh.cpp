@@ -26,9 +26,16 @@ std::shared_ptr<const DatabaseBvh<Real>> sharedBvhOf(const std::shared_ptr<const
   std::shared_ptr<TreeSlot<Real>> slot;
   {
     const std::lock_guard lock(mutex);
-    // A slot nobody holds and whose tree is gone serves no one (use_count only falls outside the lock, so
-    // a stale count keeps a slot one call longer, never drops a slot in use).
-    std::erase_if(slots, [](const auto& entry) { return entry.second.use_count() == 1 && entry.second->tree.expired(); });
+    // A slot nobody holds and whose tree is gone serves no one. Its tree is read under its own lock (a slot
+    // being built is kept); copies of a slot are only made under this lock, so a count read here is never
+    // too low, at worst stale and too high, which keeps a slot one call longer.
+    std::erase_if(slots, [](const auto& entry) {
+      TreeSlot<Real>& slot = *entry.second;
+      if (!slot.building.try_lock()) return false;
+      const bool gone = slot.tree.expired();
+      slot.building.unlock();
+      return gone && entry.second.use_count() == 1;
+    });
     std::shared_ptr<TreeSlot<Real>>& entry = slots[database.get()];
     if (!entry) entry = std::make_shared<TreeSlot<Real>>();
     slot = entry;
