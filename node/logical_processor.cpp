@@ -236,7 +236,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
 template <class Real>
 bool LogicalProcessor<Real>::beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const {
   return !context_.sceneBounds.empty() &&
-         !lastInsideBounds(context_.sceneBounds, core::Vec3(ray.origin), core::Vec3(ray.direction), t, tMax);
+         !meetsBounds(context_.sceneBounds, core::Vec3(ray.origin), core::Vec3(ray.direction), t, tMax);
 }
 
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of

@@ -23,4 +23,15 @@ inline std::optional<double> lastInsideBounds(const std::vector<core::Box>& boun
   return last;
 }
 
+// Whether the ray meets one of the boxes within [t, tMax]: lastInsideBounds(...) has a value, found at the
+// first box met (a processor asks this at every region exit).
+inline bool meetsBounds(const std::vector<core::Box>& bounds, const core::Vec3& origin, const core::Vec3& direction,
+                        double t, double tMax) {
+  const core::InverseDirection<double> inverse(direction);
+  double tEnter;
+  for (const core::Box& box : bounds)
+    if (core::slabsHit(box, origin, inverse, t, tMax, tEnter)) return true;
+  return false;
+}
+
 }  // namespace raycube::node

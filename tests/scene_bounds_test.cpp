@@ -18,6 +18,9 @@ TEST(SceneBounds, LastInsideIsTheFarthestExitAhead) {
 
 TEST(SceneBounds, NoneWhenTheRayMeetsNoBoxAhead) {
   const core::Vec3 origin(0, 0, 0);
+  EXPECT_FALSE(meetsBounds(kTwoBoxes, origin, core::Vec3(1, 0, 0), 6.5, core::kInfinity));
+  EXPECT_FALSE(meetsBounds(kTwoBoxes, origin, core::Vec3(1, 0, 0), 3, 4));
+  EXPECT_TRUE(meetsBounds(kTwoBoxes, origin, core::Vec3(1, 0, 0), 3, 5.5));
   EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(1, 0, 0), 6.5, core::kInfinity));  // past both
   EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(-1, 0, 0), 0, core::kInfinity));   // away
   EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(0, 1, 0), 0, core::kInfinity));    // beside
