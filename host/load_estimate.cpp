@@ -79,7 +79,9 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
       ++row.raysTraced;
       ScreenSegment s;
       const bool point = lightRaysWhereTheyStart && ray.kind == core::RayKind::Light;
-      if (!point && !sceneBounds.empty())
+      // An eye ray projects onto its pixel whatever its length (and the eye itself has no projection); the
+      // others end where they leave the scene's bounds, or stay the point they start from.
+      if (!point && !sceneBounds.empty() && ray.kind != core::RayKind::Eye)
         tEnd = std::min(tEnd, node::lastInsideBounds(sceneBounds, core::Vec3(ray.ray.origin),
                                                      core::Vec3(ray.ray.direction), ray.ray.tMin, tEnd)
                                   .value_or(ray.ray.tMin));

@@ -5,7 +5,10 @@
 #include <random>
 
 #include "core/balls.h"
+#include "core/intersect.h"
+#include "core/whitted.h"
 #include "host/bsp_partition.h"
+#include "host/load_estimate.h"
 #include "host/machine_report.h"
 #include "host/sequential_renderers.h"
 #include "machine_test_support.h"
@@ -120,6 +123,26 @@ TEST(LoadEstimate, NearbyAreasGiveExactlyTheLoadsOfEveryArea) {
       }
     }
   }
+}
+
+// Where the scene lies ends a ray's segment (node/scene_bounds.h), but every sub-sampled ray still weighs
+// somewhere: an eye ray on its pixel, missing everything or not, and a reflected ray that leaves the scene at
+// once on the point it starts from. Looking away from the flake, the eye rays are all there is.
+TEST(LoadEstimate, RaysLeavingTheSceneStillWeigh) {
+  core::Scene scene = core::makeBalls(2);
+  const core::View toward(scene.camera, 32, 32, core::Sampling::Centers, 1);
+  scene.camera.at = 2.0 * scene.camera.from - scene.camera.at;
+  const core::View away(scene.camera, 32, 32, core::Sampling::Centers, 1);
+  const core::Whitted shading(scene, core::ShadingOptions{});
+  std::vector<core::Box> bounds;
+  for (const core::Object& o : scene.objects) bounds.push_back(core::boundsOf(o, 0x1p-16));
+  for (const core::View& view : {toward, away}) {
+    const LoadSample without = subsampleLoad(scene, view, shading, 4, LoadMetric::Rays, true);
+    const LoadSample with = subsampleLoad(scene, view, shading, 4, LoadMetric::Rays, true, bounds);
+    EXPECT_EQ(with.raysTraced, without.raysTraced);
+    EXPECT_EQ(with.segments.size(), without.segments.size());
+  }
+  EXPECT_EQ(subsampleLoad(scene, away, shading, 4, LoadMetric::Rays, true, bounds).segments.size(), 64u);
 }
 
 MachineSettings bspMachine(int processors, LoadMetric metric, int window, node::LightRayMode lights,
