@@ -27,6 +27,12 @@ struct BasicBox {
   }
   Vec3Of<Real> center() const { return Real(0.5) * (lo + hi); }
   Vec3Of<Real> extent() const { return hi - lo; }
+  // Half the surface area (the surface-area heuristic's measure); 0 for an empty box.
+  Real halfArea() const {
+    if (empty()) return 0;
+    const Vec3Of<Real> e = extent();
+    return e.x * e.y + e.y * e.z + e.z * e.x;
+  }
   // Grown on every side by `relative` of its largest extent plus its largest coordinate magnitude, over all
   // three axes: conservative against rounding, which in one axis depends on the coordinates of the others.
   // A flat box at 0 (a polygon in the plane z = 0) thus gets a margin across its plane too: without it the

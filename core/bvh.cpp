@@ -40,12 +40,6 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector
 
 namespace {
 
-double halfArea(const Box& b) {
-  if (b.empty()) return 0;
-  const Vec3 e = b.extent();
-  return e.x * e.y + e.y * e.z + e.z * e.x;
-}
-
 constexpr int kBins = 16;
 constexpr double kTraversalCost = 1.0;  // relative to one ray-object test
 
@@ -108,7 +102,7 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
     for (int b = bins - 1; b > 0; --b) {
       acc.extend(binBox[b]);
       n += binCount[b];
-      rightArea[b] = halfArea(acc);
+      rightArea[b] = acc.halfArea();
       rightCount[b] = n;
     }
     acc = Box{};
@@ -118,7 +112,7 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
       n += binCount[b];
       if (n == 0 || rightCount[b + 1] == 0) continue;
       const double cost =
-          kTraversalCost + (halfArea(acc) * n + rightArea[b + 1] * rightCount[b + 1]) / halfArea(bounds);
+          kTraversalCost + (acc.halfArea() * n + rightArea[b + 1] * rightCount[b + 1]) / bounds.halfArea();
       if (cost < bestCost) {
         bestCost = cost;
         bestAxis = axis;

@@ -52,10 +52,7 @@ void BoxTree::build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t
 
 std::vector<core::Box> BoxTree::cover(std::size_t most) const {
   if (nodes_.empty()) return {};
-  const auto area = [&](std::uint32_t n) {
-    const core::Vec3 e = nodes_[n].box.extent();
-    return e.x * e.y + e.y * e.z + e.z * e.x;
-  };
+  const auto area = [&](std::uint32_t n) { return nodes_[n].box.halfArea(); };
   std::vector<std::uint32_t> frontier{0};
   for (;;) {
     // The largest node with children, opened into them while the cover has room for one more box.

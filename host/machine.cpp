@@ -155,9 +155,9 @@ std::vector<core::Box> worldBoxesOf(const core::Scene& scene) {
 }
 
 // Where the scene lies: a few boxes holding every object's world box (padded as the cells pad them),
-// widened for a float ray's hit error.
-std::vector<core::Box> sceneBoundsOf(const BoxTree& inWorld, const core::Scene& scene) {
-  const double floatHitError = core::kFloatHitErrorRelative * 2 * scene.largestCoordinate();
+// widened for a float ray's hit error over the scene's longest segment, as the eye boxes are.
+std::vector<core::Box> sceneBoundsOf(const BoxTree& inWorld, double sceneExtent) {
+  const double floatHitError = core::kFloatHitErrorRelative * sceneExtent;
   std::vector<core::Box> bounds = inWorld.cover(node::scheduling::kSceneBoundsBoxes);
   for (core::Box& b : bounds) b = core::Box{b.lo - floatHitError, b.hi + floatHitError};
   return bounds;
@@ -338,9 +338,10 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   // emulated paper's machine's do) and for the light volumes.
   const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
   const bool endRaysLeavingScene = machine.endRaysLeavingScene && !machine.emulate;
+  const double sceneExtent = 2 * scene.largestCoordinate();  // bounds any ray segment in the scene
   const BoxTree inWorld(lightVolumes || endRaysLeavingScene ? worldBoxesOf(scene) : std::vector<core::Box>{});
   std::vector<core::Box> sceneBounds;
-  if (endRaysLeavingScene) sceneBounds = sceneBoundsOf(inWorld, scene);
+  if (endRaysLeavingScene) sceneBounds = sceneBoundsOf(inWorld, sceneExtent);
   LoadSample load = subsampleLoad(scene, view, shading, machine.subsampleWindow, machine.loadMetric, lightVolumes,
                                   sceneBounds);
   seconds.sampling = laps.next();
@@ -348,7 +349,6 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   seconds.partitioning = laps.next();
   progress.phase("pruning");
   std::vector<node::EyeBox> boxes;
-  const double sceneExtent = 2 * scene.largestCoordinate();
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
   std::vector<node::NodeSetup> setups = pruneDatabase(shading, view, context.regions, context.lines(), boxes,
                                                       inWorld, machine);
