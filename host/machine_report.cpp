@@ -161,7 +161,7 @@ nlohmann::json machineJson(const MachineReport& report) {
             {"pruning", report.preprocessing.pruning},
             {"cells", report.preprocessing.cells},
             {"mapping", report.preprocessing.mapping},
-            {"mappingDuringSynthesis", !report.settings.emulate}}},
+            {"mappingDuringSynthesis", !report.hypercubeNode.empty() && !report.settings.emulate}}},
           {"hypercube",
            {{"mapped", !report.hypercubeNode.empty()},
             {"dimension", report.hypercubeDimension},

@@ -466,6 +466,8 @@ TEST(MachineTest, HypercubeMappedOnlyWhenAskedOrEmulated) {
   EXPECT_TRUE(unmapped.hypercubeNode.empty());
   EXPECT_NE(machineTable(unmapped).find("hypercube not mapped"), std::string::npos);
   EXPECT_FALSE(machineJson(unmapped).at("hypercube").at("mapped").get<bool>());
+  EXPECT_FALSE(machineJson(unmapped).at("preprocessingSeconds").at("mappingDuringSynthesis").get<bool>());
+  EXPECT_EQ(unmapped.preprocessing.mapping, 0);
   EXPECT_TRUE(withMap.image.pixels == withoutMap.image.pixels);
 }
 
