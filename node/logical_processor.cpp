@@ -328,12 +328,14 @@ bool LogicalProcessor<Real>::flushOverflow() {
   bool moved = false;
   for (std::size_t slot = 0; slot < overflow_.size(); ++slot) {
     OverflowList<Message>& pending = overflow_[slot];
-    if (pending.empty()) continue;
-    const std::span<const Message> waiting = pending.all();
-    const std::size_t n = transport_.trySend(neighbours_[slot], waiting);
-    for (std::size_t k = 0; k < n; ++k) countSent(neighbours_[slot], waiting[k]);
-    pending.pop_front(n);
-    moved |= n > 0;
+    while (!pending.empty()) {  // the oldest first, in at most two runs (the list is a ring)
+      const std::span<const Message> waiting = pending.oldest();
+      const std::size_t n = transport_.trySend(neighbours_[slot], waiting);
+      for (std::size_t k = 0; k < n; ++k) countSent(neighbours_[slot], waiting[k]);
+      pending.pop_front(n);
+      moved |= n > 0;
+      if (n < waiting.size()) break;
+    }
   }
   return moved;
 }
