@@ -34,13 +34,13 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector
     items.push_back(BuildItem{box, box.center(), o});
   }
   nodes_.reserve(2 * order_.size() + 1);
-  if (!items.empty()) build(items, 0, std::uint32_t(items.size()), 0);
+  Bins bins;
+  if (!items.empty()) build(items, 0, std::uint32_t(items.size()), 0, bins);
   for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].object;
 }
 
 namespace {
 
-constexpr int kBins = 16;
 constexpr double kTraversalCost = 1.0;  // relative to one ray-object test
 
 // Bins per unit of centroid extent along each axis; 0 where the centroids do not spread.
@@ -62,7 +62,7 @@ int binOf(double centre, double lo, double scale, int bins) {
 // Binned surface-area heuristic over object centroids (Wald 2007); a leaf when no split pays.
 template <class Real>
 std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end,
-                                    int depth) {
+                                    int depth, Bins& scratch) {
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   Box bounds, centroids;
@@ -78,8 +78,12 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
   const int bins = int(std::min<std::uint32_t>(count, kBins));
   const bool split = count > kLeafSize && depth < kMaxDepth;
   // The three axes binned in one pass over the boxes (each box read once).
-  Box binBoxes[3][kBins];
-  std::uint32_t binCounts[3][kBins] = {};
+  auto& binBoxes = scratch.boxes;
+  auto& binCounts = scratch.counts;
+  for (int axis = 0; axis < 3 && split; ++axis) {
+    std::fill_n(binBoxes[axis], bins, Box{});
+    std::fill_n(binCounts[axis], bins, 0u);
+  }
   const Vec3 scale = binScale(centroids, bins);
   for (std::uint32_t i = begin; i < end && split; ++i) {
     const Box& box = items[i].box;
@@ -130,8 +134,8 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
     return binOf(item.centre[bestAxis], lo, axisScale, bins) <= bestBin;
   });
   const std::uint32_t mid = std::uint32_t(midIt - items.begin());
-  build(items, begin, mid, depth + 1);
-  const std::uint32_t right = build(items, mid, end, depth + 1);
+  build(items, begin, mid, depth + 1, scratch);
+  const std::uint32_t right = build(items, mid, end, depth + 1, scratch);
   nodes_[index].first = right;
   nodes_[index].axis = std::uint8_t(bestAxis);
   return index;
