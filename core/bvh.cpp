@@ -12,17 +12,15 @@ namespace {
 constexpr std::uint32_t kLeafSize = 1;
 }
 
-namespace {
-std::vector<std::uint32_t> allObjects(const Scene& scene) {
+std::vector<std::uint32_t> everyObjectOf(const Scene& scene) {
   std::vector<std::uint32_t> all(scene.objects.size());
   for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   return all;
 }
-}  // namespace
 
 template <class Real>
 BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading)
-    : BasicBvh(scene, shading, allObjects(scene)) {}
+    : BasicBvh(scene, shading, everyObjectOf(scene)) {}
 
 template <class Real>
 BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects)
@@ -37,6 +35,91 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector
   Bins bins;
   if (!items.empty()) build(items, 0, std::uint32_t(items.size()), 0, bins);
   for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].object;
+}
+
+template <class Real>
+BvhShape BasicBvh<Real>::shape() const {
+  BvhShape out;
+  out.order = order_;
+  out.nodes.reserve(nodes_.size());
+  for (const Node& n : nodes_) out.nodes.push_back(BvhShape::Node{n.first, n.count, n.axis});
+  out.parent.assign(nodes_.size(), 0);
+  out.leafOf.assign(scene_.objects.size(), 0);
+  for (std::uint32_t n = 0; n < nodes_.size(); ++n) {
+    if (nodes_[n].count > 0) {
+      for (std::uint32_t i = nodes_[n].first; i < nodes_[n].first + nodes_[n].count; ++i) out.leafOf[order_[i]] = n;
+    } else {
+      out.parent[n + 1] = n;
+      out.parent[nodes_[n].first] = n;
+    }
+  }
+  return out;
+}
+
+// What the restricting constructor keeps of the whole tree: the nodes above its objects' leaves, and which
+// object of this scene each whole-scene object of those leaves is.
+template <class Real>
+struct BasicBvh<Real>::Restriction {
+  const BvhShape& whole;
+  std::vector<char> kept;  // per whole node
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> objectOfWholeId;  // sorted by whole id
+  const std::uint32_t* localOf(std::uint32_t wholeId) const {
+    const auto at = std::lower_bound(objectOfWholeId.begin(), objectOfWholeId.end(),
+                                     std::pair<std::uint32_t, std::uint32_t>{wholeId, 0});
+    return at != objectOfWholeId.end() && at->first == wholeId ? &at->second : nullptr;
+  }
+};
+
+template <class Real>
+BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::vector<std::uint32_t>& objects,
+                         const BvhShape& whole, std::span<const std::uint32_t> wholeIdOf)
+    : scene_(scene), shading_(shading) {
+  if (objects.empty()) return;
+  Restriction r{whole, std::vector<char>(whole.nodes.size(), 0), {}};
+  r.objectOfWholeId.reserve(objects.size());
+  for (std::uint32_t o : objects) {
+    const std::uint32_t id = wholeIdOf[o];
+    r.objectOfWholeId.emplace_back(id, o);
+    // Mark the way up from the object's leaf, as far as a way already marked.
+    for (std::uint32_t n = whole.leafOf[id]; !r.kept[n]; n = whole.parent[n]) {
+      r.kept[n] = 1;
+      if (n == 0) break;
+    }
+  }
+  std::sort(r.objectOfWholeId.begin(), r.objectOfWholeId.end());
+  order_.reserve(objects.size());
+  keep(r, 0);
+}
+
+// Copies the kept part of the whole tree's node (kept[wholeNode] holds), depth first as build lays nodes out;
+// an inner node with one kept child becomes that child. Returns the copy's index.
+template <class Real>
+std::uint32_t BasicBvh<Real>::keep(const Restriction& r, std::uint32_t wholeNode) {
+  const BvhShape::Node& w = r.whole.nodes[wholeNode];
+  if (w.count == 0) {
+    const std::uint32_t left = wholeNode + 1, right = w.first;
+    if (!r.kept[left]) return keep(r, right);
+    if (!r.kept[right]) return keep(r, left);
+  }
+  const std::uint32_t index = std::uint32_t(nodes_.size());
+  nodes_.push_back(Node{});
+  if (w.count > 0) {
+    Box bounds;
+    const std::uint32_t first = std::uint32_t(order_.size());
+    for (std::uint32_t i = w.first; i < w.first + w.count; ++i)
+      if (const std::uint32_t* local = r.localOf(r.whole.order[i])) {
+        order_.push_back(*local);
+        bounds.extend(boundsOf(scene_.objects[*local], kBoxPaddingRelativeOf<Real>));
+      }
+    nodes_[index] = Node{bounds.template enclosingIn<Real>(), first, std::uint32_t(order_.size()) - first, 0};
+    return index;
+  }
+  keep(r, wholeNode + 1);
+  const std::uint32_t right = keep(r, w.first);
+  BasicBox<Real> box = nodes_[index + 1].box;
+  box.extend(nodes_[right].box);
+  nodes_[index] = Node{box, right, 0, w.axis};
+  return index;
 }
 
 namespace {

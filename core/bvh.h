@@ -3,6 +3,7 @@
 // worker). Its answers equal BruteForce's bit for bit: same intersection functions, same tie rule. Its boxes
 // and slab tests are in the precision Real of the rays it answers.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/box.h"
@@ -12,12 +13,37 @@
 
 namespace raycube::core {
 
+// The indices of all the scene's objects, in order.
+std::vector<std::uint32_t> everyObjectOf(const Scene& scene);
+
+// The shape of a BVH over a whole scene, without its boxes: a BVH over part of that scene can keep it,
+// restricted to its own objects, instead of being built anew (a processor's trees, from the host's).
+struct BvhShape {
+  struct Node {
+    std::uint32_t first = 0;  // as BasicBvh's nodes: leaf, first index into order; inner, the right child
+    std::uint32_t count = 0;  // leaf: objects; inner: 0 (the left child follows the node)
+    std::uint8_t axis = 0;
+  };
+  std::vector<Node> nodes;
+  std::vector<std::uint32_t> order;   // object indices, leaves point into it
+  std::vector<std::uint32_t> parent;  // per node (the root's is 0)
+  std::vector<std::uint32_t> leafOf;  // per object of the scene: the leaf holding it
+};
+
 template <class Real>
 class BasicBvh {
  public:
   BasicBvh(const Scene& scene, const Whitted& shading);
   // Over a subset of the scene's objects (indices), e.g. what a processor holds.
   BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects);
+  // The same, shaped as `whole` (a BVH over a larger scene in which this scene's object i is object
+  // wholeIdOf[i]) with the branches holding none of `objects` cut off and single children lifted: a few
+  // nanoseconds per node kept, where a build bins every object at every level. Its boxes are this tree's
+  // own, so its answers are those of any BVH over these objects.
+  BasicBvh(const Scene& scene, const Whitted& shading, const std::vector<std::uint32_t>& objects,
+           const BvhShape& whole, std::span<const std::uint32_t> wholeIdOf);
+
+  BvhShape shape() const;
 
   Hit closestHit(const BasicRay<Real>& ray, TraceCounters& counters) const;
   double transmission(const BasicRay<Real>& ray, TraceCounters& counters, std::vector<Hit>& crossed) const;
@@ -57,6 +83,8 @@ class BasicBvh {
   };
   std::uint32_t build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end, int depth,
                       Bins& bins);
+  struct Restriction;
+  std::uint32_t keep(const Restriction& r, std::uint32_t wholeNode);
 
   const Scene& scene_;
   const Whitted& shading_;

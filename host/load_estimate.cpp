@@ -64,7 +64,13 @@ bool projectSegment(const core::View& view, const core::Ray& ray, double t1, dou
 LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
                          int window, LoadMetric metric, bool lightRaysWhereTheyStart,
                          const std::vector<core::Box>& sceneBounds) {
-  const core::Bvh database(scene, shading);
+  return subsampleLoad(core::Bvh(scene, shading), view, shading, window, metric, lightRaysWhereTheyStart,
+                       sceneBounds);
+}
+
+LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, const core::Whitted& shading,
+                         int window, LoadMetric metric, bool lightRaysWhereTheyStart,
+                         const std::vector<core::Box>& sceneBounds) {
   const double zNear = std::max(view.hither(), 1e-9 * (1 + glm::length(view.eye())));
   // One sample per window, at its centre (3.7.1: "choosing one pixel in each window"); the rows of windows
   // on all cores, then joined in order, so the segments come in the same order however many cores ran.

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/bvh.h"
 #include "core/scene.h"
 #include "core/view.h"
 #include "core/whitted.h"
@@ -37,6 +38,10 @@ struct LoadSample {
 // machine ends rays that leave the scene (node/scene_bounds.h), so a segment ends there too; none: at
 // the screen's edge.
 LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const core::Whitted& shading,
+                         int window, LoadMetric metric, bool lightRaysWhereTheyStart,
+                         const std::vector<core::Box>& sceneBounds = {});
+// The same, tracing in a BVH of the whole scene built beforehand (for the shading's scene).
+LoadSample subsampleLoad(const core::Bvh& scene, const core::View& view, const core::Whitted& shading,
                          int window, LoadMetric metric, bool lightRaysWhereTheyStart,
                          const std::vector<core::Box>& sceneBounds = {});
 

@@ -96,7 +96,7 @@ struct DistributedRun {
 
 // Where the preprocessing time goes (3.2 steps 1-2, 3.7.1), in seconds.
 struct PreprocessingSeconds {
-  double sampling = 0;      // the sub-sampled rays (3.7.1)
+  double sampling = 0;      // the sub-sampled rays (3.7.1), and alongside them the spatial queries pruning uses
   double partitioning = 0;  // the grid, or the BSP of the sub-sampled load
   double pruning = 0;       // each region's database and light volumes (3.2 step 1, 3.7.2)
   double cells = 0;         // the processors building their structures, in the engine (3.2 step 2)

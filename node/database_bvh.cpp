@@ -19,7 +19,8 @@ struct TreeSlot {
 
 template <class Real>
 std::shared_ptr<const DatabaseBvh<Real>> sharedBvhOf(const std::shared_ptr<const RegionDatabase>& database,
-                                                     const core::ShadingOptions& options) {
+                                                     const core::ShadingOptions& options,
+                                                     const core::BvhShape* sceneShape) {
   // A tree keeps its database alive, so a database's address names one database while its tree lives.
   static std::mutex mutex;
   static std::map<const RegionDatabase*, std::shared_ptr<TreeSlot<Real>>> slots;
@@ -43,15 +44,15 @@ std::shared_ptr<const DatabaseBvh<Real>> sharedBvhOf(const std::shared_ptr<const
   const std::lock_guard building(slot->building);
   std::shared_ptr<const DatabaseBvh<Real>> tree = slot->tree.lock();
   if (!tree) {
-    tree = std::make_shared<const DatabaseBvh<Real>>(database, options);
+    tree = std::make_shared<const DatabaseBvh<Real>>(database, options, sceneShape);
     slot->tree = tree;
   }
   return tree;
 }
 
 template std::shared_ptr<const DatabaseBvh<float>> sharedBvhOf(const std::shared_ptr<const RegionDatabase>&,
-                                                               const core::ShadingOptions&);
+                                                               const core::ShadingOptions&, const core::BvhShape*);
 template std::shared_ptr<const DatabaseBvh<double>> sharedBvhOf(const std::shared_ptr<const RegionDatabase>&,
-                                                                const core::ShadingOptions&);
+                                                                const core::ShadingOptions&, const core::BvhShape*);
 
 }  // namespace raycube::node

@@ -13,8 +13,14 @@ namespace raycube::node {
 
 template <class Real>
 struct DatabaseBvh {
-  DatabaseBvh(std::shared_ptr<const RegionDatabase> held, const core::ShadingOptions& options)
-      : database(std::move(held)), shading(database->scene, options), bvh(database->scene, shading) {}
+  // sceneShape: the whole scene's BVH to keep the shape of (see NodeSetup::sceneShape), or none: built anew.
+  DatabaseBvh(std::shared_ptr<const RegionDatabase> held, const core::ShadingOptions& options,
+              const core::BvhShape* sceneShape)
+      : database(std::move(held)),
+        shading(database->scene, options),
+        bvh(sceneShape ? core::BasicBvh<Real>(database->scene, shading, core::everyObjectOf(database->scene), *sceneShape,
+                                              database->globalIds)
+                       : core::BasicBvh<Real>(database->scene, shading)) {}
   DatabaseBvh(const DatabaseBvh&) = delete;  // bvh refers to database and shading
   DatabaseBvh& operator=(const DatabaseBvh&) = delete;
 
@@ -23,10 +29,11 @@ struct DatabaseBvh {
   core::BasicBvh<Real> bvh;
 };
 
-// The tree over `database`: built on the first call, then the same tree for as long as some processor holds
+// The tree over `database`: made on the first call, then the same tree for as long as some processor holds
 // it. Every caller for one database must pass the same shading options (those of its machine's run).
 template <class Real>
 std::shared_ptr<const DatabaseBvh<Real>> sharedBvhOf(const std::shared_ptr<const RegionDatabase>& database,
-                                                     const core::ShadingOptions& options);
+                                                     const core::ShadingOptions& options,
+                                                     const core::BvhShape* sceneShape = nullptr);
 
 }  // namespace raycube::node

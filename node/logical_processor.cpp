@@ -35,8 +35,11 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.heldObjects = setup_.database->size();
   stats_.cells = cells_.cellCount();
   stats_.bvh = structure_ == CellStructure::Bvh;
+  // Built anew over the region's objects: the whole scene's shape restricted to a region's pyramid costs its
+  // rays 3-10% more box tests (8 x 8), for a tenth of the processors' building time.
   if (stats_.bvh) regionBvh_ = std::make_unique<const core::BasicBvh<Real>>(scene_, shading_, setup_.objects);
-  if (setup_.lightRays != LightRayMode::Messages) databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading);
+  if (setup_.lightRays != LightRayMode::Messages)
+    databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading, setup_.sceneShape.get());
   stats_.lightObjects = setup_.lightObjects;
   stats_.extraLightObjects = setup_.extraLightObjects;
 }

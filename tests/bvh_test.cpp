@@ -1,0 +1,107 @@
+// The BVH (core/bvh.h), built anew and kept from a whole scene's shape: a tree over part of a scene
+// restricted from the whole scene's tree answers every ray as one built over that part does, and as testing
+// every object does, in both precisions.
+#include "core/bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/brute_force.h"
+#include "core/spd_scenes.h"
+
+namespace raycube::core {
+namespace {
+
+// The objects `ids` of `whole` (ascending) as a scene of their own, with its materials and lights.
+Scene partOf(const Scene& whole, const std::vector<std::uint32_t>& ids) {
+  Scene part = whole;
+  part.objects.clear();
+  for (std::uint32_t id : ids) part.objects.push_back(whole.objects[id]);
+  return part;
+}
+
+// Rays from anywhere in and around the scene towards its objects (near a random object's centre).
+std::vector<Ray> raysThrough(const Scene& scene, int count, unsigned seed) {
+  std::mt19937 random(seed);
+  const double extent = scene.largestCoordinate();
+  std::uniform_real_distribution<double> coordinate(-1.2 * extent, 1.2 * extent), jitter(-0.01, 0.01);
+  std::uniform_int_distribution<std::size_t> object(0, scene.objects.size() - 1);
+  std::vector<Ray> rays;
+  while (int(rays.size()) < count) {
+    const Vec3 from{coordinate(random), coordinate(random), coordinate(random)};
+    const Vec3 to = boundsOf(scene.objects[object(random)], 0).center() +
+                    extent * Vec3{jitter(random), jitter(random), jitter(random)};
+    if (glm::length(to - from) < 1e-6 * extent) continue;
+    rays.push_back(Ray{from, glm::normalize(to - from), 0, kInfinity});
+  }
+  return rays;
+}
+
+template <class Real>
+void expectSameAnswers(const Scene& scene, const BasicBvh<Real>& kept,
+                       const BasicBvh<Real>& built, const std::vector<std::uint32_t>& objects) {
+  const Scene only = partOf(scene, objects);  // what a tree over `objects` may answer with
+  const Whitted onlyShading(only, ShadingOptions{});
+  const BruteForce brute(only, onlyShading);
+  TraceCounters counters;
+  int hits = 0;
+  for (const Ray& r : raysThrough(scene, 3000, 11)) {
+    const BasicRay<Real> ray = r.template as<Real>();
+    const Hit a = kept.closestHit(ray, counters), b = built.closestHit(ray, counters);
+    const Hit c = brute.closestHit(ray, counters);
+    ASSERT_EQ(a.t, b.t);
+    ASSERT_EQ(a.object, b.object);
+    ASSERT_EQ(a.t, c.t);
+    if (c.found()) {
+      ASSERT_EQ(a.object, objects[c.object]);
+      ++hits;
+    }
+  }
+  EXPECT_GT(hits, 100);
+}
+
+template <class Real>
+void checkRestrictions() {
+  const Scene whole = makeSpdScene("jacks", 2);
+  const Whitted wholeShading(whole, ShadingOptions{});
+  const BvhShape shape = Bvh(whole, wholeShading).shape();
+  std::mt19937 random(5);
+  for (double share : {0.02, 0.3, 1.0}) {
+    // A processor's database: every share-th object of the whole scene, in ascending order.
+    std::vector<std::uint32_t> held;
+    for (std::uint32_t id = 0; id < whole.objects.size(); ++id)
+      if (std::uniform_real_distribution<double>(0, 1)(random) < share) held.push_back(id);
+    ASSERT_FALSE(held.empty());
+    const Scene database = partOf(whole, held);
+    const Whitted shading(database, ShadingOptions{});
+    // Over all of it, and over half of it (the region's objects among what it holds).
+    std::vector<std::uint32_t> all(held.size()), half;
+    for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    for (std::uint32_t i = 0; i < all.size(); i += 2) half.push_back(i);
+    for (const auto* objects : {&all, &half}) {
+      const BasicBvh<Real> kept(database, shading, *objects, shape, held);
+      const BasicBvh<Real> built(database, shading, *objects);
+      EXPECT_LE(kept.nodeCount(), 2 * objects->size());  // single children lifted: a full binary tree
+      expectSameAnswers(database, kept, built, *objects);
+    }
+  }
+}
+
+TEST(Bvh, KeptFromTheWholeScenesShapeAnswersAsOneBuiltAnew) { checkRestrictions<double>(); }
+TEST(Bvh, KeptFromTheWholeScenesShapeAnswersAsOneBuiltAnewInFloat) { checkRestrictions<float>(); }
+
+TEST(Bvh, KeptOverNothingIsEmpty) {
+  const Scene whole = makeSpdScene("jacks", 1);
+  const Whitted shading(whole, ShadingOptions{});
+  const BvhShape shape = Bvh(whole, shading).shape();
+  std::vector<std::uint32_t> ids(whole.objects.size());
+  for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  const Bvh kept(whole, shading, {}, shape, ids);
+  EXPECT_EQ(kept.nodeCount(), 0u);
+  TraceCounters counters;
+  EXPECT_FALSE(kept.closestHit(raysThrough(whole, 1, 3).front(), counters).found());
+}
+
+}  // namespace
+}  // namespace raycube::core
