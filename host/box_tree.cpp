@@ -24,7 +24,8 @@ BoxTree::BoxTree(const std::vector<core::Box>& boxes) {
   }
 }
 
-// Fills node `index` with items [begin, end), split across the widest axis of their centres.
+// Fills node `index` with items [begin, end). Median split of the centres along the widest axis: balanced,
+// so the depth is log2 of the count.
 void BoxTree::build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index) {
   core::Box bounds, centres;
   for (std::uint32_t i = begin; i < end; ++i) {
@@ -37,20 +38,9 @@ void BoxTree::build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t
   const core::Vec3 extent = centres.extent();
   if (end - begin <= kLeafSize || !(std::max({extent.x, extent.y, extent.z}) > 0)) return;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-  // The centres' midpoint: one pass of swaps, where the median's selection moves every item several times;
-  // the median when the midpoint leaves one side less than an eighth, so the depth stays logarithmic
-  // however the centres crowd (objects spaced geometrically would peel off one per level).
-  const double split = 0.5 * (centres.lo[axis] + centres.hi[axis]);
-  std::uint32_t mid = std::uint32_t(
-      std::partition(items.begin() + begin, items.begin() + end,
-                     [&](const Item& item) { return item.centre[axis] < split; }) -
-      items.begin());
-  const std::uint32_t smallest = (end - begin) / 8;
-  if (mid - begin < smallest || end - mid < smallest || mid == begin || mid == end) {
-    mid = begin + (end - begin) / 2;
-    std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
-                     [&](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
-  }
+  const std::uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                   [&](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
   // Children next to each other, their subtrees after them.
   const std::uint32_t children = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
