@@ -5,6 +5,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfThreading.h>
 #include <fmt/format.h>
 #include <png.h>
 
@@ -19,6 +20,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace raycube::core {
 
@@ -183,6 +185,19 @@ double srgb8ToLinear(std::uint8_t code) {
 
 // ---- OpenEXR ---------------------------------------------------------------------------------------------
 
+namespace {
+
+// OpenEXR compresses and decompresses blocks on its global thread pool, empty unless asked for.
+void useEveryCoreForOpenExr() {
+  static const bool once = [] {
+    Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
+    return true;
+  }();
+  (void)once;
+}
+
+}  // namespace
+
 void writeExr(const Image& image, const std::filesystem::path& path) {
   checkShape(image, path);
   std::vector<float> rgb(image.pixels.size() * 3);
@@ -194,6 +209,10 @@ void writeExr(const Image& image, const std::filesystem::path& path) {
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
+    // zlib's fastest level, its blocks compressed on every core: 57 -> 25 ms for a 512x512 image (a tenth
+    // of a short run, in every mode), for a file 1% larger.
+    header.zipCompressionLevel() = 1;
+    useEveryCoreForOpenExr();
     for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
 
     const std::size_t xStride = 3 * sizeof(float);
@@ -216,6 +235,7 @@ void writeExr(const Image& image, const std::filesystem::path& path) {
 
 Image readExr(const std::filesystem::path& path) {
   try {
+    useEveryCoreForOpenExr();
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dataWindow = file.header().dataWindow();
     const int width = dataWindow.max.x - dataWindow.min.x + 1;
