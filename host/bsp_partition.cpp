@@ -1,5 +1,6 @@
 #include "host/bsp_partition.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -18,23 +19,47 @@ struct Splitter {
   LoadMetric metric;
   std::vector<node::SampleRect> leaves;
 
-  // Load on each side of the line `axis` = k, for pieces already inside the rectangle (summed in locals:
-  // the callers' outputs sit side by side, written by different threads).
-  void sides(const std::vector<ScreenSegment>& pieces, int axis, double k, double& belowOut,
-             double& aboveOut) const {
-    double below = 0, above = 0;
+  // The pieces' extents along the axis being cut, side by side (lo <= hi), with their weights: every
+  // candidate line reads them in the pieces' order.
+  struct Extents {
+    std::vector<double> lo, hi, weight;
+  };
+  static Extents extentsAlong(const std::vector<ScreenSegment>& pieces, int axis) {
+    Extents e;
+    for (auto* v : {&e.lo, &e.hi, &e.weight}) v->reserve(pieces.size());
     for (const ScreenSegment& s : pieces) {
       const double a = axis == 0 ? s.x0 : s.y0, b = axis == 0 ? s.x1 : s.y1;
-      const double lo = std::min(a, b), hi = std::max(a, b);
-      if (metric == LoadMetric::Rays) {
-        below += lo < k ? s.weight : 0;
-        above += hi >= k ? s.weight : 0;
-      } else if (hi <= lo) {
-        (lo < k ? below : above) += s.weight;
-      } else {
-        const double f = std::clamp((k - lo) / (hi - lo), 0.0, 1.0);
-        below += s.weight * f;
-        above += s.weight * (1 - f);
+      e.lo.push_back(std::min(a, b));
+      e.hi.push_back(std::max(a, b));
+      e.weight.push_back(s.weight);
+    }
+    return e;
+  }
+
+  // Load on each side of the line k (summed in locals: the callers' outputs sit side by side, written by
+  // different threads), piece by piece in order, so the sums are the same whoever computes them.
+  void sides(const Extents& e, double k, double& belowOut, double& aboveOut) const {
+    double below = 0, above = 0;
+    const std::size_t n = e.lo.size();
+    if (metric == LoadMetric::Rays) {
+      for (std::size_t i = 0; i < n; ++i) {
+        below += e.lo[i] < k ? e.weight[i] : 0;
+        above += e.hi[i] >= k ? e.weight[i] : 0;
+      }
+    } else {
+      // A piece on one side of the line weighs there whole (its share (k - lo) / (hi - lo) rounds to exactly
+      // 1 or 0, and adding w * 0 changes no sum of weights): only the pieces the line cuts need the division.
+      for (std::size_t i = 0; i < n; ++i) {
+        const double lo = e.lo[i], hi = e.hi[i], w = e.weight[i];
+        if (lo >= k) {
+          above += w;
+        } else if (hi <= k) {
+          below += w;
+        } else {
+          const double f = (k - lo) / (hi - lo);  // in (0, 1) up to rounding
+          below += w * std::clamp(f, 0.0, 1.0);
+          above += w * (1 - std::clamp(f, 0.0, 1.0));
+        }
       }
     }
     belowOut = below;
@@ -64,6 +89,7 @@ struct Splitter {
       const long long least = std::max<long long>(1, processors - (hi - k) * across);
       return least > most ? 0 : int(std::clamp<long long>(processors / 2, least, most));
     };
+    const Extents extents = extentsAlong(pieces, axis);
     // The loads each side of every feasible line among `lines`, then the best in order (the first of equals).
     auto consider = [&](const std::vector<int>& lines) {
       std::vector<int> feasible;
@@ -72,7 +98,7 @@ struct Splitter {
       std::vector<double> below(feasible.size()), above(feasible.size());
       auto weigh = [&](int i) {
         const auto at = std::size_t(i);
-        sides(pieces, axis, feasible[at], below[at], above[at]);
+        sides(extents, feasible[at], below[at], above[at]);
       };
       if (pieces.size() * feasible.size() >= kParallelWork)
         parallelFor(int(feasible.size()), weigh);
