@@ -56,9 +56,9 @@ struct Splitter {
         } else if (hi <= k) {
           below += w;
         } else {
-          const double f = (k - lo) / (hi - lo);  // in (0, 1) up to rounding
-          below += w * std::clamp(f, 0.0, 1.0);
-          above += w * (1 - std::clamp(f, 0.0, 1.0));
+          const double f = std::clamp((k - lo) / (hi - lo), 0.0, 1.0);
+          below += w * f;
+          above += w * (1 - f);
         }
       }
     }

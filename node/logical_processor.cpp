@@ -331,7 +331,7 @@ bool LogicalProcessor<Real>::flushOverflow() {
   bool moved = false;
   for (std::size_t slot = 0; slot < overflow_.size(); ++slot) {
     OverflowList<Message>& pending = overflow_[slot];
-    while (!pending.empty()) {  // the oldest first, in at most two runs (the list is a ring)
+    while (!pending.empty()) {  // the oldest first, a chunk's run at a time, until the FIFO is full
       const std::span<const Message> waiting = pending.oldest();
       const std::size_t n = transport_.trySend(neighbours_[slot], waiting);
       for (std::size_t k = 0; k < n; ++k) countSent(neighbours_[slot], waiting[k]);
