@@ -272,6 +272,24 @@ void BM_BvhBuild(benchmark::State& state, const char* name) {
 BENCHMARK_CAPTURE(BM_BvhBuild, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BvhBuild, balls4, "balls")->Unit(benchmark::kMillisecond);
 
+// A processor's database BVH keeps the shape of the host's tree over the whole scene, restricted to what the
+// processor holds (here every other object): the cost per processor and database. items/s: objects kept.
+void BM_BvhRestrict(benchmark::State& state, const char* name) {
+  const Scene scene = makeSpdScene(name);
+  const Whitted shading(scene, ShadingOptions{});
+  const BvhShape whole = Bvh(scene, shading).shape();
+  const std::vector<std::uint32_t> identity = everyObjectOf(scene);
+  std::vector<std::uint32_t> held;
+  for (std::uint32_t o = 0; o < identity.size(); o += 2) held.push_back(o);
+  for (auto _ : state) {
+    const Bvh bvh(scene, shading, held, whole, identity);
+    benchmark::DoNotOptimize(bvh.nodeCount());
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(held.size()));
+}
+BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhRestrict, balls4, "balls")->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace raycube::core
 

@@ -57,17 +57,15 @@ BvhShape BasicBvh<Real>::shape() const {
 }
 
 // What the restricting constructor keeps of the whole tree: the nodes above its objects' leaves, and which
-// object of this scene each whole-scene object of those leaves is.
+// object of this scene each whole-scene object of those leaves is (kNotHeld if none): one lookup per object
+// in a table as long as the whole scene, where a search of the objects sorted by whole id cost a third of
+// the restriction (sombrero 3's 72,000 held objects at 4 x 4).
 template <class Real>
 struct BasicBvh<Real>::Restriction {
+  static constexpr std::uint32_t kNotHeld = std::numeric_limits<std::uint32_t>::max();
   const BvhShape& whole;
-  std::vector<char> kept;  // per whole node
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> objectOfWholeId;  // sorted by whole id
-  const std::uint32_t* localOf(std::uint32_t wholeId) const {
-    const auto at = std::lower_bound(objectOfWholeId.begin(), objectOfWholeId.end(),
-                                     std::pair<std::uint32_t, std::uint32_t>{wholeId, 0});
-    return at != objectOfWholeId.end() && at->first == wholeId ? &at->second : nullptr;
-  }
+  std::vector<char> kept;                // per whole node
+  std::vector<std::uint32_t> localOf;    // per whole object
 };
 
 template <class Real>
@@ -75,18 +73,17 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::
                          const BvhShape& whole, std::span<const std::uint32_t> wholeIdOf)
     : scene_(scene), shading_(shading) {
   if (objects.empty()) return;
-  Restriction r{whole, std::vector<char>(whole.nodes.size(), 0), {}};
-  r.objectOfWholeId.reserve(objects.size());
+  Restriction r{whole, std::vector<char>(whole.nodes.size(), 0),
+                std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld)};
   for (std::uint32_t o : objects) {
     const std::uint32_t id = wholeIdOf[o];
-    r.objectOfWholeId.emplace_back(id, o);
+    r.localOf[id] = o;
     // Mark the way up from the object's leaf, as far as a way already marked.
     for (std::uint32_t n = whole.leafOf[id]; !r.kept[n]; n = whole.parent[n]) {
       r.kept[n] = 1;
       if (n == 0) break;
     }
   }
-  std::sort(r.objectOfWholeId.begin(), r.objectOfWholeId.end());
   order_.reserve(objects.size());
   keep(r, 0);
 }
@@ -107,9 +104,9 @@ std::uint32_t BasicBvh<Real>::keep(const Restriction& r, std::uint32_t wholeNode
     Box bounds;
     const std::uint32_t first = std::uint32_t(order_.size());
     for (std::uint32_t i = w.first; i < w.first + w.count; ++i)
-      if (const std::uint32_t* local = r.localOf(r.whole.order[i])) {
-        order_.push_back(*local);
-        bounds.extend(boundsOf(scene_.objects[*local], kBoxPaddingRelativeOf<Real>));
+      if (const std::uint32_t local = r.localOf[r.whole.order[i]]; local != Restriction::kNotHeld) {
+        order_.push_back(local);
+        bounds.extend(boundsOf(scene_.objects[local], kBoxPaddingRelativeOf<Real>));
       }
     nodes_[index] = Node{bounds.template enclosingIn<Real>(), first, std::uint32_t(order_.size()) - first, 0};
     return index;
