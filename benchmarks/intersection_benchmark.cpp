@@ -19,6 +19,7 @@
 #include "core/polygon_outline.h"
 #include "core/spd_scenes.h"
 #include "core/whitted.h"
+#include "host/box_tree.h"
 
 namespace raycube::core {
 namespace {
@@ -260,17 +261,24 @@ BENCHMARK(BM_BvhTransmission_Balls2);
 
 // Building the BVH over an SPD scene at its default size (the machine builds one per distinct database and
 // one per dense region: a preprocessing cost). items/s is objects per second.
-void BM_BvhBuild(benchmark::State& state, const char* name) {
+void BM_BvhBuild(benchmark::State& state, const char* name, Bvh::BuildOn on) {
   const Scene scene = makeSpdScene(name);
   const Whitted shading(scene, ShadingOptions{});
   for (auto _ : state) {
-    const Bvh bvh(scene, shading);
+    const Bvh bvh(scene, shading, on);
     benchmark::DoNotOptimize(bvh.nodeCount());
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(scene.objects.size()));
 }
-BENCHMARK_CAPTURE(BM_BvhBuild, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BvhBuild, balls4, "balls")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhBuild, sombrero3, "sombrero", Bvh::BuildOn::OneCore)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhBuild, balls4, "balls", Bvh::BuildOn::OneCore)->Unit(benchmark::kMillisecond);
+// On every core, as the host builds its trees over the whole scene: wall time is what counts.
+BENCHMARK_CAPTURE(BM_BvhBuild, sombrero3_every_core, "sombrero", Bvh::BuildOn::EveryCore)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_BvhBuild, balls4_every_core, "balls", Bvh::BuildOn::EveryCore)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // A processor's database BVH keeps the shape of the host's tree over the whole scene, restricted to what the
 // processor holds (here every other object): the cost per processor and database. items/s: objects kept.
@@ -289,6 +297,21 @@ void BM_BvhRestrict(benchmark::State& state, const char* name) {
 }
 BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BvhRestrict, balls4, "balls")->Unit(benchmark::kMillisecond);
+
+// The host's box tree over every object's world box, for pruning (built twice per machine run: world and
+// eye-frame boxes). items/s: objects.
+void BM_BoxTreeBuild(benchmark::State& state, const char* name) {
+  const Scene scene = makeSpdScene(name);
+  std::vector<Box> boxes;
+  for (const Object& o : scene.objects) boxes.push_back(boundsOf(o, 0));
+  for (auto _ : state) {
+    const host::BoxTree tree(boxes);
+    benchmark::DoNotOptimize(&tree);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(boxes.size()));
+}
+BENCHMARK_CAPTURE(BM_BoxTreeBuild, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BoxTreeBuild, balls4, "balls")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace raycube::core

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <thread>
 
 #include "core/precision.h"
 #include "core/transmission.h"
@@ -10,6 +11,11 @@ namespace raycube::core {
 
 namespace {
 constexpr std::uint32_t kLeafSize = 1;
+// A build on every core spawns a thread for the right subtree of the first two splits whose smaller side
+// holds at least kSpawnObjects / 2 objects (four subtrees: an uneven split still leaves two cores busy; a
+// thread costs tens of microseconds, two thousand objects' build about a millisecond).
+constexpr int kSpawnLevels = 2;
+constexpr std::uint32_t kSpawnObjects = 4096;
 }
 
 std::vector<std::uint32_t> everyObjectOf(const Scene& scene) {
@@ -19,11 +25,12 @@ std::vector<std::uint32_t> everyObjectOf(const Scene& scene) {
 }
 
 template <class Real>
-BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading)
-    : BasicBvh(scene, shading, everyObjectOf(scene)) {}
+BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, BuildOn on)
+    : BasicBvh(scene, shading, everyObjectOf(scene), on) {}
 
 template <class Real>
-BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects)
+BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects,
+                         BuildOn on)
     : scene_(scene), shading_(shading), order_(std::move(objects)) {
   std::vector<BuildItem> items;
   items.reserve(order_.size());
@@ -33,7 +40,8 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector
   }
   nodes_.reserve(2 * order_.size() + 1);
   Bins bins;
-  if (!items.empty()) build(items, 0, std::uint32_t(items.size()), 0, bins);
+  if (!items.empty())
+    build(items, 0, std::uint32_t(items.size()), 0, bins, nodes_, on == BuildOn::EveryCore ? kSpawnLevels : 0);
   for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].object;
 }
 
@@ -142,15 +150,15 @@ int binOf(double centre, double lo, double scale, int bins) {
 // Binned surface-area heuristic over object centroids (Wald 2007); a leaf when no split pays.
 template <class Real>
 std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end,
-                                    int depth, Bins& scratch) {
-  const std::uint32_t index = std::uint32_t(nodes_.size());
-  nodes_.push_back(Node{});
+                                    int depth, Bins& scratch, std::vector<Node>& nodes, int spawnLevels) {
+  const std::uint32_t index = std::uint32_t(nodes.size());
+  nodes.push_back(Node{});
   Box bounds, centroids;
   for (std::uint32_t i = begin; i < end; ++i) {
     bounds.extend(items[i].box);
     centroids.extend(items[i].centre);
   }
-  nodes_[index].box = bounds.template enclosingIn<Real>();
+  nodes[index].box = bounds.template enclosingIn<Real>();
   const std::uint32_t count = end - begin;
   int bestAxis = -1, bestBin = 0;
   double bestCost = double(count);  // cost of a leaf, in object tests
@@ -205,8 +213,8 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
     }
   }
   if (bestAxis < 0) {
-    nodes_[index].first = begin;
-    nodes_[index].count = count;
+    nodes[index].first = begin;
+    nodes[index].count = count;
     return index;
   }
   const double lo = centroids.lo[bestAxis], axisScale = scale[bestAxis];
@@ -214,10 +222,31 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
     return binOf(item.centre[bestAxis], lo, axisScale, bins) <= bestBin;
   });
   const std::uint32_t mid = std::uint32_t(midIt - items.begin());
-  build(items, begin, mid, depth + 1, scratch);
-  const std::uint32_t right = build(items, mid, end, depth + 1, scratch);
-  nodes_[index].first = right;
-  nodes_[index].axis = std::uint8_t(bestAxis);
+  std::uint32_t right;
+  // Only a split into two large parts is worth a thread; past a lopsided one (a large sphere beside the
+  // rest), the larger part may still split evenly further down.
+  const bool spawn = spawnLevels > 0 && std::min(mid - begin, end - mid) >= kSpawnObjects / 2;
+  if (spawn) {
+    // The two subtrees' items are disjoint ranges of `items`, their nodes separate vectors until joined.
+    std::vector<Node> rightNodes;
+    std::thread rightBuilder([&, mid, end] {
+      Bins bins;
+      rightNodes.reserve(2 * std::size_t(end - mid));
+      build(items, mid, end, depth + 1, bins, rightNodes, spawnLevels - 1);
+    });
+    build(items, begin, mid, depth + 1, scratch, nodes, spawnLevels - 1);
+    rightBuilder.join();
+    right = std::uint32_t(nodes.size());
+    for (Node n : rightNodes) {
+      if (n.count == 0) n.first += right;  // an inner node's right child, now further on
+      nodes.push_back(n);
+    }
+  } else {
+    build(items, begin, mid, depth + 1, scratch, nodes, spawnLevels);
+    right = build(items, mid, end, depth + 1, scratch, nodes, spawnLevels);
+  }
+  nodes[index].first = right;
+  nodes[index].axis = std::uint8_t(bestAxis);
   return index;
 }
 

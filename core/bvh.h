@@ -33,9 +33,13 @@ struct BvhShape {
 template <class Real>
 class BasicBvh {
  public:
-  BasicBvh(const Scene& scene, const Whitted& shading);
+  // Where a build runs: on the calling thread, or on every core for the host's trees over a whole scene,
+  // built while nothing else runs (subtrees of large nodes on threads of their own; the same tree).
+  enum class BuildOn { OneCore, EveryCore };
+  explicit BasicBvh(const Scene& scene, const Whitted& shading, BuildOn on = BuildOn::OneCore);
   // Over a subset of the scene's objects (indices), e.g. what a processor holds.
-  BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects);
+  BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects,
+           BuildOn on = BuildOn::OneCore);
   // The same, shaped as `whole` (a BVH over a larger scene in which this scene's object i is object
   // wholeIdOf[i]) with the branches holding none of `objects` cut off and single children lifted: a few
   // nanoseconds per node kept, where a build bins every object at every level. Its boxes are this tree's
@@ -81,8 +85,11 @@ class BasicBvh {
     Box boxes[3][kBins];
     std::uint32_t counts[3][kBins];
   };
+  // Builds items [begin, end) into `nodes` (depth first: a node, its left subtree, its right subtree).
+  // Above spawnLevels, a large node's right subtree builds on a thread of its own into nodes of its own,
+  // appended once both are done: the layout of a build on one thread.
   std::uint32_t build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end, int depth,
-                      Bins& bins);
+                      Bins& bins, std::vector<Node>& nodes, int spawnLevels);
   struct Restriction;
   std::uint32_t keep(const Restriction& r, std::uint32_t wholeNode);
 

@@ -84,7 +84,9 @@ RenderResult renderImageParallelIn(const core::Scene& scene, const RenderSetting
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
   const core::Whitted shading(scene, settings.shading);
-  const core::BasicBvh<Real> database(scene, shading);
+  const core::BasicBvh<Real> database(scene, shading,
+                                      settings.threads == 1 ? core::BasicBvh<Real>::BuildOn::OneCore
+                                                            : core::BasicBvh<Real>::BuildOn::EveryCore);
   Framebuffer frame(view.samplesX(), view.samplesY());
   RenderResult result;
   result.mode = "image-parallel";
