@@ -1,16 +1,55 @@
 #include "host/box_tree.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace raycube::host {
+
+// A box as a median split sees it, kept in split order so every pass reads memory in sequence.
+struct MedianItem {
+  core::Box box;
+  core::Vec3 centre;
+  std::uint32_t object;
+};
+
 namespace {
 constexpr std::uint32_t kLeafSize = 4;
+
+std::vector<MedianItem> itemsOf(const std::vector<core::Box>& boxes) {
+  std::vector<MedianItem> items;
+  items.reserve(boxes.size());
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) items.push_back(MedianItem{boxes[i], boxes[i].center(), i});
+  return items;
 }
 
+// Items [begin, end): their bounds, and unless they stay a leaf, split at `mid` by the median of their
+// centres along the centres' widest axis (balanced, so a tree of them is log2 of the count deep).
+struct MedianSplit {
+  core::Box bounds;
+  bool leaf = true;
+  std::uint32_t mid = 0;
+};
+MedianSplit splitAtMedian(std::vector<MedianItem>& items, std::uint32_t begin, std::uint32_t end) {
+  MedianSplit split;
+  core::Box centres;
+  for (std::uint32_t i = begin; i < end; ++i) {
+    split.bounds.extend(items[i].box);
+    centres.extend(items[i].centre);
+  }
+  const core::Vec3 extent = centres.extent();
+  if (end - begin <= kLeafSize || !(std::max({extent.x, extent.y, extent.z}) > 0)) return split;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  split.leaf = false;
+  split.mid = begin + (end - begin) / 2;
+  std::nth_element(items.begin() + begin, items.begin() + split.mid, items.begin() + end,
+                   [&](const MedianItem& a, const MedianItem& b) { return a.centre[axis] < b.centre[axis]; });
+  return split;
+}
+
+}  // namespace
+
 BoxTree::BoxTree(const std::vector<core::Box>& boxes) {
-  std::vector<Item> items;
-  items.reserve(boxes.size());
-  for (std::uint32_t i = 0; i < boxes.size(); ++i) items.push_back(Item{boxes[i], boxes[i].center(), i});
+  std::vector<MedianItem> items = itemsOf(boxes);
   nodes_.reserve(2 * items.size() / kLeafSize + 2);
   if (!items.empty()) {
     nodes_.push_back(Node{});
@@ -18,56 +57,80 @@ BoxTree::BoxTree(const std::vector<core::Box>& boxes) {
   }
   order_.reserve(items.size());
   leafBoxes_.reserve(items.size());
-  for (const Item& item : items) {
+  for (const MedianItem& item : items) {
     order_.push_back(item.object);
     leafBoxes_.push_back(item.box);
   }
 }
 
-// Fills node `index` with items [begin, end). Median split of the centres along the widest axis: balanced,
-// so the depth is log2 of the count.
-void BoxTree::build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index) {
-  core::Box bounds, centres;
-  for (std::uint32_t i = begin; i < end; ++i) {
-    bounds.extend(items[i].box);
-    centres.extend(items[i].centre);
-  }
-  nodes_[index].box = bounds;
-  nodes_[index].begin = begin;
-  nodes_[index].end = end;
-  const core::Vec3 extent = centres.extent();
-  if (end - begin <= kLeafSize || !(std::max({extent.x, extent.y, extent.z}) > 0)) return;
-  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-  const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
-                   [&](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
-  // Children next to each other, their subtrees after them.
+// Fills node `index` with items [begin, end), its children next to each other, their subtrees after them.
+void BoxTree::build(std::vector<MedianItem>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index) {
+  const MedianSplit split = splitAtMedian(items, begin, end);
+  nodes_[index] = Node{split.bounds, begin, end, 0};
+  if (split.leaf) return;
   const std::uint32_t children = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   nodes_.push_back(Node{});
   nodes_[index].children = children;
-  build(items, begin, mid, children);
-  build(items, mid, end, children + 1);
+  build(items, begin, split.mid, children);
+  build(items, split.mid, end, children + 1);
 }
 
-std::vector<core::Box> BoxTree::cover(std::size_t most) const {
-  if (nodes_.empty()) return {};
-  const auto area = [&](std::uint32_t n) { return nodes_[n].box.halfArea(); };
-  std::vector<std::uint32_t> frontier{0};
+BoxTree::BoxTree(const std::vector<core::Box>& boxes, const core::BvhShape& shape) {
+  if (boxes.empty()) return;
+  if (shape.order.size() != boxes.size() || shape.nodes.empty())
+    throw std::invalid_argument("BoxTree: the BVH's shape is not over these boxes");
+  order_ = shape.order;
+  leafBoxes_.reserve(order_.size());
+  for (std::uint32_t o : order_) leafBoxes_.push_back(boxes[o]);
+  nodes_.reserve(shape.nodes.size());
+  nodes_.push_back(Node{});
+  adopt(shape, 0, 0);
+}
+
+// Node `index` as the shape's node `shapeNode` (a BVH lays a subtree's objects side by side in its order, the
+// left child's first), its box the bounds of its leaves' boxes.
+void BoxTree::adopt(const core::BvhShape& shape, std::uint32_t shapeNode, std::uint32_t index) {
+  const core::BvhShape::Node& s = shape.nodes[shapeNode];
+  if (s.count > 0) {
+    core::Box box;
+    for (std::uint32_t i = s.first; i < s.first + s.count; ++i) box.extend(leafBoxes_[i]);
+    nodes_[index] = Node{box, s.first, s.first + s.count, 0};
+    return;
+  }
+  const std::uint32_t children = std::uint32_t(nodes_.size());
+  nodes_.push_back(Node{});
+  nodes_.push_back(Node{});
+  adopt(shape, shapeNode + 1, children);
+  adopt(shape, s.first, children + 1);
+  core::Box box = nodes_[children].box;
+  box.extend(nodes_[children + 1].box);
+  nodes_[index] = Node{box, nodes_[children].begin, nodes_[children + 1].end, children};
+}
+
+std::vector<core::Box> medianCover(const std::vector<core::Box>& boxes, std::size_t most) {
+  if (boxes.empty()) return {};
+  std::vector<MedianItem> items = itemsOf(boxes);
+  struct Part {
+    std::uint32_t begin, end;
+    MedianSplit split;
+  };
+  auto partOf = [&](std::uint32_t begin, std::uint32_t end) { return Part{begin, end, splitAtMedian(items, begin, end)}; };
+  std::vector<Part> frontier{partOf(0, std::uint32_t(items.size()))};
+  const auto area = [&](std::size_t i) { return frontier[i].split.bounds.halfArea(); };
   for (;;) {
-    // The largest node with children, opened into them while the cover has room for one more box.
+    // The largest part that splits, opened into its halves while the cover has room for one more box.
     std::size_t widest = frontier.size();
     for (std::size_t i = 0; i < frontier.size(); ++i)
-      if (nodes_[frontier[i]].children != 0 && (widest == frontier.size() || area(frontier[i]) > area(frontier[widest])))
-        widest = i;
+      if (!frontier[i].split.leaf && (widest == frontier.size() || area(i) > area(widest))) widest = i;
     if (widest == frontier.size() || frontier.size() + 1 > most) break;
-    const std::uint32_t children = nodes_[frontier[widest]].children;
-    frontier[widest] = children;
-    frontier.push_back(children + 1);
+    const Part opened = frontier[widest];
+    frontier[widest] = partOf(opened.begin, opened.split.mid);
+    frontier.push_back(partOf(opened.split.mid, opened.end));
   }
-  std::vector<core::Box> boxes;
-  for (std::uint32_t n : frontier) boxes.push_back(nodes_[n].box);
-  return boxes;
+  std::vector<core::Box> cover;
+  for (const Part& p : frontier) cover.push_back(p.split.bounds);
+  return cover;
 }
 
 // Found indices are distinct: a light volume reaching most of the scene (the ground polygon's) is put in order

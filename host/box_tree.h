@@ -3,17 +3,25 @@
 // finding the objects a region or a light volume may hold costs about (objects found) x log(objects), not a
 // test of every object. The test must be monotone (a box that fails it holds no box that passes it), as
 // every test of node/eye_box.h and host/light_volume.h is: a subtree whose box fails is skipped whole.
+// What a query finds does not depend on the tree's shape, only how fast it finds it.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "core/box.h"
+#include "core/bvh.h"
 
 namespace raycube::host {
 
+struct MedianItem;  // a box as BoxTree's median splits see it
+
 class BoxTree {
  public:
+  // Median splits of the boxes' centres along their widest axis, down to leaves of a few boxes.
   explicit BoxTree(const std::vector<core::Box>& boxes);
+  // The shape of a BVH over the same objects (its order lists every index of `boxes`), with these boxes'
+  // own bounds: linear in the objects where a build is n log n (the host's sampling BVH is at hand).
+  BoxTree(const std::vector<core::Box>& boxes, const core::BvhShape& shape);
 
   // Indices of the boxes passing mayHold(box), whose every enclosing node also passes, in ascending order.
   // holdsAll(box), when it can tell, says that every box inside `box` passes: the subtree is taken whole.
@@ -24,28 +32,24 @@ class BoxTree {
     return query(mayHold, [](const core::Box&) { return false; });
   }
 
-  // At most `most` boxes (at least one, unless the tree is empty) that together hold every box: the tree's
-  // nodes, opening the largest first, so the cover hugs the boxes as closely as that many boxes can.
-  std::vector<core::Box> cover(std::size_t most) const;
-
  private:
   struct Node {
     core::Box box;
     std::uint32_t begin = 0, end = 0;  // the range of order_ its subtree holds
     std::uint32_t children = 0;        // inner: left child here, right child next; 0: a leaf
   };
-  // A box as the build sees it, kept in build order so every pass reads memory in sequence.
-  struct Item {
-    core::Box box;
-    core::Vec3 centre;
-    std::uint32_t object;
-  };
-  void build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
+  void build(std::vector<MedianItem>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
+  void adopt(const core::BvhShape& shape, std::uint32_t shapeNode, std::uint32_t index);
   void sortAscending(std::vector<std::uint32_t>& found) const;
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> order_;  // object indices, leaves point into it
   std::vector<core::Box> leafBoxes_;  // per entry of order_
 };
+
+// At most `most` boxes (at least one, unless there are none) that together hold every box: the nodes of
+// BoxTree(boxes)'s median splits, opening the largest first, so the cover hugs the boxes as closely as that
+// many boxes can. Only the nodes opened are split.
+std::vector<core::Box> medianCover(const std::vector<core::Box>& boxes, std::size_t most);
 
 template <class MayHold, class HoldsAll>
 std::vector<std::uint32_t> BoxTree::query(MayHold&& mayHold, HoldsAll&& holdsAll) const {

@@ -155,9 +155,9 @@ std::vector<core::Box> worldBoxesOf(const core::Scene& scene) {
 
 // Where the scene lies: a few boxes holding every object's world box (padded as the cells pad them),
 // widened for a float ray's hit error over the scene's longest segment, as the eye boxes are.
-std::vector<core::Box> sceneBoundsOf(const BoxTree& inWorld, double sceneExtent) {
+std::vector<core::Box> sceneBoundsOf(const std::vector<core::Box>& worldBoxes, double sceneExtent) {
   const double floatHitError = core::kFloatHitErrorRelative * sceneExtent;
-  std::vector<core::Box> bounds = inWorld.cover(node::scheduling::kSceneBoundsBoxes);
+  std::vector<core::Box> bounds = medianCover(worldBoxes, node::scheduling::kSceneBoundsBoxes);
   for (core::Box& b : bounds) b = core::Box{b.lo - floatHitError, b.hi + floatHitError};
   return bounds;
 }
@@ -327,41 +327,53 @@ class Laps {
   Clock::time_point last_ = Clock::now();
 };
 
+// The host's indexes for pruning, all of the sampling BVH's shape: over the objects' world boxes (light
+// volumes) and eye boxes (regions); the shape itself for the processors' database BVHs.
+struct SpatialQueries {
+  std::shared_ptr<const core::BvhShape> shape;
+  BoxTree inWorld, inEyeFrame;
+};
+
 HostPreparation prepare(const core::Scene& scene, const core::View& view, const RenderSettings& settings,
                         const MachineSettings& machine, Progress& progress, PreprocessingSeconds& seconds) {
   Laps laps;
   const core::Whitted shading(scene, settings.shading);
-  // The sampling's BVH of the whole scene builds on one core while this one builds the spatial queries
-  // (about as long on large scenes: sombrero 3's BVH 15 ms, each box tree 9 ms).
-  std::future<std::unique_ptr<const core::Bvh>> sampled =
-      std::async(std::launch::async, [&] { return std::make_unique<const core::Bvh>(scene, shading); });
+  // The sampling's BVH of the whole scene builds on every core while this thread computes the objects'
+  // boxes; its shape then serves the spatial queries and the processors' database BVHs.
+  std::future<std::unique_ptr<const core::Bvh>> sampled = std::async(std::launch::async, [&] {
+    return std::make_unique<const core::Bvh>(scene, shading, core::Bvh::BuildOn::EveryCore);
+  });
   // The objects' world boxes: for where the scene lies (unless rays travel on to the screen's edge, as the
   // emulated paper's machine's do) and for the light volumes; their eye boxes for the regions.
   const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
   const bool endRaysLeavingScene = machine.endRaysLeavingScene && !machine.emulate;
   const double sceneExtent = 2 * scene.largestCoordinate();  // bounds any ray segment in the scene
-  const BoxTree inWorld(lightVolumes || endRaysLeavingScene ? worldBoxesOf(scene) : std::vector<core::Box>{});
+  const std::vector<core::Box> worldBoxes =
+      lightVolumes || endRaysLeavingScene ? worldBoxesOf(scene) : std::vector<core::Box>{};
   std::vector<core::Box> sceneBounds;
-  if (endRaysLeavingScene) sceneBounds = sceneBoundsOf(inWorld, sceneExtent);
+  if (endRaysLeavingScene) sceneBounds = sceneBoundsOf(worldBoxes, sceneExtent);
   std::vector<node::EyeBox> boxes;
   boxes.reserve(scene.objects.size());
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
-  const BoxTree inEyeFrame(eyeFrameBoxesOf(boxes));
   const std::unique_ptr<const core::Bvh> wholeScene = sampled.get();
+  // The spatial queries take the BVH's shape on the other core while this one sub-samples and partitions.
+  std::future<SpatialQueries> queries = std::async(std::launch::async, [&] {
+    auto shape = std::make_shared<const core::BvhShape>(wholeScene->shape());
+    return SpatialQueries{shape, BoxTree(worldBoxes, *shape), BoxTree(eyeFrameBoxesOf(boxes), *shape)};
+  });
   LoadSample load = subsampleLoad(*wholeScene, view, shading, machine.subsampleWindow, machine.loadMetric,
                                   lightVolumes, sceneBounds);
   seconds.sampling = laps.next();
   node::MachineContext context{view, settings.shading, partition(view, load, machine), std::move(sceneBounds)};
   seconds.partitioning = laps.next();
   progress.phase("pruning");
+  const SpatialQueries spatial = queries.get();
   std::vector<node::NodeSetup> setups = pruneDatabase(shading, view, context.regions, context.lines(), boxes,
-                                                      inEyeFrame, inWorld, machine);
+                                                      spatial.inEyeFrame, spatial.inWorld, machine);
   // The processors' BVHs keep the sampling tree's shape (NodeSetup::sceneShape), but for the emulated
   // machine, whose costs count the box tests of trees built anew.
-  if (!machine.emulate) {
-    const auto shape = std::make_shared<const core::BvhShape>(wholeScene->shape());
-    for (node::NodeSetup& setup : setups) setup.sceneShape = shape;
-  }
+  if (!machine.emulate)
+    for (node::NodeSetup& setup : setups) setup.sceneShape = spatial.shape;
   seconds.pruning = laps.next();
   return {std::move(load), std::move(context), std::move(setups)};
 }

@@ -1,11 +1,13 @@
 // The host's pruning index (host/box_tree.h) finds exactly what testing every box finds, in ascending order,
-// with or without taking whole the subtrees that lie inside the query.
+// with or without taking whole the subtrees that lie inside the query, split at medians or shaped as a BVH.
 #include "host/box_tree.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
+
+#include "core/whitted.h"
 
 namespace raycube::host {
 namespace {
@@ -14,6 +16,15 @@ bool overlaps(const core::Box& a, const core::Box& b) {
   for (int k = 0; k < 3; ++k)
     if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
   return true;
+}
+
+// The shape of a BVH over spheres at the boxes' centres: any tree over the same objects answers the same.
+core::BvhShape shapeOver(const std::vector<core::Box>& boxes) {
+  core::Scene scene;
+  scene.materials.push_back(core::Material{});
+  for (const core::Box& b : boxes) scene.objects.push_back(core::Object{core::Sphere{b.center(), 1.0}});
+  const core::Whitted shading(scene, core::ShadingOptions{});
+  return core::Bvh(scene, shading).shape();
 }
 
 TEST(BoxTree, QueryFindsWhatTestingEveryBoxFinds) {
@@ -27,23 +38,25 @@ TEST(BoxTree, QueryFindsWhatTestingEveryBoxFinds) {
     }
     // Many identical boxes too: the median split must still end.
     if (count == 1000) boxes.insert(boxes.end(), 50, boxes.front());
-    const BoxTree tree(boxes);
+    const BoxTree median(boxes), shaped(boxes, shapeOver(boxes));
+    for (const BoxTree* tree : {&median, &shaped})
     for (int q = 0; q < 20; ++q) {
       const core::Vec3 lo(at(rng), at(rng), at(rng));
       const core::Box region{lo, lo + core::Vec3(40, 40, 40)};
       std::vector<std::uint32_t> expected;
       for (std::uint32_t i = 0; i < boxes.size(); ++i)
         if (overlaps(boxes[i], region)) expected.push_back(i);
-      EXPECT_EQ(tree.query([&](const core::Box& b) { return overlaps(b, region); }), expected) << count;
+      EXPECT_EQ(tree->query([&](const core::Box& b) { return overlaps(b, region); }), expected) << count;
       // Subtrees found whole when their box lies inside the region: the same answer.
       auto inside = [&](const core::Box& b) {
         for (int k = 0; k < 3; ++k)
           if (b.lo[k] < region.lo[k] || b.hi[k] > region.hi[k]) return false;
         return true;
       };
-      EXPECT_EQ(tree.query([&](const core::Box& b) { return overlaps(b, region); }, inside), expected) << count;
+      EXPECT_EQ(tree->query([&](const core::Box& b) { return overlaps(b, region); }, inside), expected) << count;
     }
-    EXPECT_EQ(tree.query([](const core::Box&) { return true; }).size(), boxes.size());
+    EXPECT_EQ(median.query([](const core::Box&) { return true; }).size(), boxes.size());
+    EXPECT_EQ(shaped.query([](const core::Box&) { return true; }).size(), boxes.size());
   }
 }
 
@@ -69,11 +82,10 @@ TEST(BoxTree, CoverHoldsEveryBoxInAtMostTheBoxesAsked) {
     const core::Vec3 lo = core::Vec3(at(rng), at(rng), at(rng)) + core::Vec3(i % 2 ? 1000 : 0, 0, 0);
     boxes.push_back(core::Box{lo, lo + core::Vec3(size(rng), size(rng), size(rng))});
   }
-  const BoxTree tree(boxes);
-  EXPECT_TRUE(BoxTree({}).cover(16).empty());
+  EXPECT_TRUE(medianCover({}, 16).empty());
   std::vector<double> volumes;
   for (std::size_t most : {1u, 2u, 16u, 64u}) {
-    const std::vector<core::Box> cover = tree.cover(most);
+    const std::vector<core::Box> cover = medianCover(boxes, most);
     ASSERT_GE(cover.size(), 1u);
     EXPECT_LE(cover.size(), most);
     for (const core::Box& b : boxes)
