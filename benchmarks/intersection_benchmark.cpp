@@ -104,7 +104,7 @@ const GearFace& gearFace() {
     GearFace f;
     for (const Object& object : readNff(RAYCUBE_SOURCE_DIR "/scenes/gears4.nff").objects)
       if (const auto* p = std::get_if<Polygon>(&object.shape); p && p->outline) {
-        f.vertices = p->vertices;
+        f.vertices = p->vertices.toVector();
         break;
       }
     Box box;

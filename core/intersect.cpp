@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
 #include <utility>
 
 #include "core/overloaded.h"
@@ -76,7 +77,7 @@ bool hitTriangle(const V<Real>& v0, const V<Real>& v1, const V<Real>& v2, const 
 
 // Polygons and patches are fans of triangles around vertex 0; the nearest fan triangle wins.
 template <class Real>
-TriangleHit<Real> hitFan(const std::vector<Vec3>& vertices, const BasicRay<Real>& ray, Real tMax,
+TriangleHit<Real> hitFan(std::span<const Vec3> vertices, const BasicRay<Real>& ray, Real tMax,
                          std::size_t* corner) {
   TriangleHit<Real> best;
   const V<Real> v0(vertices[0]);
@@ -152,7 +153,7 @@ Real hitCone(const Cone& cone, const BasicRay<Real>& ray, Real tMax) {
 }
 
 template <class Real>
-V<Real> polygonNormal(const std::vector<Vec3>& v) {
+V<Real> polygonNormal(std::span<const Vec3> v) {
   const V<Real> v0(v[0]);
   return glm::normalize(glm::cross(V<Real>(v[1]) - v0, V<Real>(v[2]) - v0));
 }

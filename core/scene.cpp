@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <span>
 #include <utility>
 
 #include "core/overloaded.h"
@@ -14,8 +15,9 @@
 namespace raycube::core {
 
 Polygon::Polygon(std::vector<Vec3> points)
-    : vertices(std::move(points)),
-      outline(vertices.size() > kMostFanVertices ? std::make_shared<const PolygonOutline>(vertices) : nullptr) {}
+    : outline(points.size() > kMostFanVertices ? std::make_shared<const PolygonOutline>(points) : nullptr) {
+  vertices = Corners(std::move(points));
+}
 
 SceneFeatures Scene::features() const {
   SceneFeatures f;
@@ -37,7 +39,7 @@ namespace {
 double largest(const Vec3& v) {
   return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
 }
-double largest(const std::vector<Vec3>& points) {
+double largest(std::span<const Vec3> points) {
   double m = 0;
   for (const Vec3& p : points) m = std::max(m, largest(p));
   return m;
@@ -56,7 +58,7 @@ double largestCoordinateOf(const Object& object) {
 
 // Largest side of the object's bounding box: its scale.
 double sizeOf(const Object& object) {
-  const auto sideOf = [](const std::vector<Vec3>& points) {
+  const auto sideOf = [](std::span<const Vec3> points) {
     Vec3 lo = points.front(), hi = points.front();
     for (const Vec3& p : points) {
       lo = glm::min(lo, p);
@@ -153,7 +155,7 @@ Scene scaledBy(Scene scene, double factor) {
                             c.apexRadius *= factor;
                           },
                           [&](Polygon& p) {
-                            std::vector<Vec3> vertices = std::move(p.vertices);
+                            std::vector<Vec3> vertices = p.vertices.toVector();
                             for (Vec3& v : vertices) v *= factor;
                             p = Polygon(std::move(vertices));
                           },

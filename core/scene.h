@@ -1,6 +1,8 @@
 #pragma once
 // The scene as NFF describes it (shared/spd/NFF.TXT): one camera, a background, positional lights,
 // materials ("f" lines) and primitives. The renderers and the machine read only this.
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstddef>
 #include <memory>
@@ -67,12 +69,39 @@ class PolygonOutline;
 // triangles, which would hold 2.6 MB more.
 inline constexpr std::size_t kMostFanVertices = 3;
 
+// A polygon's corners, in place for a triangle (the SPD's usual polygon: copied into a processor's database
+// without an allocation, tested without a pointer to follow), on the heap for more.
+class Corners {
+ public:
+  static constexpr std::size_t kInPlace = 3;
+  Corners() = default;
+  explicit Corners(std::vector<Vec3> points) : size_(points.size()) {
+    if (size_ <= kInPlace)
+      std::copy(points.begin(), points.end(), inPlace_.begin());
+    else
+      heap_ = std::move(points);
+  }
+
+  std::size_t size() const { return size_; }
+  const Vec3* data() const { return size_ <= kInPlace ? inPlace_.data() : heap_.data(); }
+  const Vec3* begin() const { return data(); }
+  const Vec3* end() const { return data() + size_; }
+  const Vec3& operator[](std::size_t i) const { return data()[i]; }
+  std::vector<Vec3> toVector() const { return std::vector<Vec3>(begin(), end()); }
+  friend bool operator==(const Corners& a, const Corners& b) { return std::equal(a.begin(), a.end(), b.begin(), b.end()); }
+
+ private:
+  std::array<Vec3, kInPlace> inPlace_{};
+  std::vector<Vec3> heap_;  // more than kInPlace corners
+  std::size_t size_ = 0;
+};
+
 // NFF "p": planar convex-or-not polygon, counter-clockwise; normal from the first three vertices (NFF: "the
 // first two edges must form a non-zero convex angle"). See core/polygon_outline.h.
 struct Polygon {
   explicit Polygon(std::vector<Vec3> vertices);
 
-  std::vector<Vec3> vertices;                     // to move them, make a new Polygon: the outline follows
+  Corners vertices;                               // to move them, make a new Polygon: the outline follows
   std::shared_ptr<const PolygonOutline> outline;  // null for a triangle; shared by every copy of the object
 };
 

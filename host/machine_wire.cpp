@@ -20,7 +20,7 @@ void writeObject(WireWriter& out, const core::Object& object) {
   out.value(std::uint8_t(object.shape.index()));
   std::visit(core::Overloaded{[&](const core::Sphere& s) { out.value(s); },
                               [&](const core::Cone& c) { out.value(c); },
-                              [&](const core::Polygon& p) { out.vector(p.vertices); },
+                              [&](const core::Polygon& p) { out.vector(p.vertices.toVector()); },
                               [&](const core::Patch& p) {
                                 out.vector(p.vertices);
                                 out.vector(p.normals);

@@ -88,7 +88,9 @@ TEST(NffReader, ReadsBalls1Exactly) {
   EXPECT_EQ(scene.materials[1].ior, 1);
   ASSERT_EQ(scene.objects.size(), 11u);
   EXPECT_EQ(scene.objects[0].material, 0u);
-  EXPECT_EQ(std::get<Polygon>(scene.objects[0].shape).vertices.at(2), Vec3(-12, -12, -0.5));
+  const Corners& corners = std::get<Polygon>(scene.objects[0].shape).vertices;
+  ASSERT_EQ(corners.size(), 4u);  // the ground quad
+  EXPECT_EQ(corners[2], Vec3(-12, -12, -0.5));
   EXPECT_EQ(scene.objects[1].material, 1u);
   const auto& sphere = std::get<Sphere>(scene.objects[2].shape);
   EXPECT_EQ(sphere.center, Vec3(0.272166, 0.272166, 0.544331));
