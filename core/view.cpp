@@ -72,11 +72,4 @@ Ray View::eyeRay(int sx, int sy, int k) const {
   return ray;
 }
 
-Vec3 View::toEye(const Vec3& world) const {
-  return directionToEye(world - eye_);
-}
-Vec3 View::directionToEye(const Vec3& d) const {
-  return Vec3(glm::dot(d, right_), glm::dot(d, up_), glm::dot(d, forward_));
-}
-
 }  // namespace raycube::core

@@ -45,8 +45,11 @@ class View {
   int raysPerSample() const { return raysPerSample_; }
 
   // The camera frame: x right, y up, z forward (depth); the machine's eye frame has y down (node/eye_frame_ray.h).
-  Vec3 toEye(const Vec3& world) const;
-  Vec3 directionToEye(const Vec3& direction) const;
+  // Inline: the machine takes every ray it evaluates or spawns into the eye frame.
+  Vec3 toEye(const Vec3& world) const { return directionToEye(world - eye_); }
+  Vec3 directionToEye(const Vec3& d) const {
+    return Vec3(glm::dot(d, right_), glm::dot(d, up_), glm::dot(d, forward_));
+  }
   Vec3 fromCamera(const Vec3& camera) const {
     return eye_ + camera.x * right_ + camera.y * up_ + camera.z * forward_;
   }
