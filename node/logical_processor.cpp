@@ -181,8 +181,9 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     std::fill(mailboxStamp_.begin(), mailboxStamp_.end(), 0u);
     rayStamp_ = 1;
   }
-  if (double transmission; ray.kind == core::RayKind::Light && tracedWhereItStarts(m, transmission))
-    return finishRay(ray, core::Hit{}, transmission);
+  if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmission == 1 &&
+      startsInLightSourceBox(ray.ray))
+    return finishRay(ray, core::Hit{}, traceWhereItStarts(ray));
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
   const double tMax = ray.kind == core::RayKind::Light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
@@ -245,19 +246,22 @@ bool LogicalProcessor<Real>::beyondScene(const core::BasicRay<Real>& ray, double
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of
 // its light's volume, all held here: traced in one piece, exactly as the reference traces it; no message.
 template <class Real>
-bool LogicalProcessor<Real>::tracedWhereItStarts(const Message& m, double& transmission) {
-  if (setup_.lightRays == LightRayMode::Messages || m.tEnter != m.ray.ray.tMin || m.transmission != 1)
-    return false;
-  const core::Vec3 origin = eyeFramePoint(context_.view, m.ray.ray.origin);
+bool LogicalProcessor<Real>::startsInLightSourceBox(const core::BasicRay<Real>& ray) const {
+  if (setup_.lightRays == LightRayMode::Messages) return false;
+  const core::Vec3 origin = eyeFramePoint(context_.view, core::Vec3(ray.origin));
   auto inside = [&](const core::Box& box) {
     for (int a = 0; a < 3; ++a)
       if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
     return true;
   };
-  if (!inside(setup_.lightSources.eyeBox) && !inside(setup_.rearLightSources.eyeBox)) return false;
+  return inside(setup_.lightSources.eyeBox) || inside(setup_.rearLightSources.eyeBox);
+}
+
+// Its transmission (a light ray that starts in the light-source box).
+template <class Real>
+double LogicalProcessor<Real>::traceWhereItStarts(const TracedRay& ray) {
   ++stats_.lightRaysTracedLocally;
-  transmission = core::lightRayTransmission(shading_, databaseBvh_->bvh, m.ray, stats_.processed, lightRayScratch_);
-  return true;
+  return core::lightRayTransmission(shading_, databaseBvh_->bvh, ray, stats_.processed, lightRayScratch_);
 }
 
 template <class Real>
@@ -273,14 +277,12 @@ void LogicalProcessor<Real>::finishRay(const TracedRay& ray, const core::Hit& hi
   deliver(outcome_);
 }
 
-// 3.4: contributions go straight to the host; new rays start where they are born.
+// 3.4: contributions go straight to the host; new rays start where they are born. A light ray born here
+// in the light-source box is traced at once (3.7.2), as it would be when its turn came on the local stack:
+// the same processor, the same tests and contribution, without becoming a message first.
 template <class Real>
 void LogicalProcessor<Real>::deliver(const core::BasicRayOutcome<Real>& outcome) {
-  for (const core::Contribution& c : outcome.contributions) {
-    ++stats_.processed.contributions;
-    if (!std::isfinite(c.value.x + c.value.y + c.value.z)) ++stats_.processed.nonFinite;
-    transport_.sendContribution(c);
-  }
+  shipContributions(outcome);
   for (const TracedRay& spawned : outcome.spawned) {
     ++stats_.spawned[std::size_t(spawned.kind)];
     Message m;
@@ -291,10 +293,26 @@ void LogicalProcessor<Real>::deliver(const core::BasicRayOutcome<Real>& outcome)
                           ? setup_.id
                           : context_.regions.ownerAt(er, m.tEnter);
     m.destination = std::uint16_t(owner);
-    if (owner == setup_.id)
-      local_.push_back(m);
-    else
+    if (owner != setup_.id) {
       send(m);
+    } else if (spawned.kind == core::RayKind::Light && startsInLightSourceBox(spawned.ray)) {
+      ++stats_.processed.of(spawned.kind);
+      ++stats_.finished[std::size_t(spawned.kind)];
+      lightOutcome_.clear();
+      shading_.finishLightRay(spawned, traceWhereItStarts(spawned), lightOutcome_);
+      shipContributions(lightOutcome_);  // a light ray spawns nothing
+    } else {
+      local_.push_back(m);
+    }
+  }
+}
+
+template <class Real>
+void LogicalProcessor<Real>::shipContributions(const core::BasicRayOutcome<Real>& outcome) {
+  for (const core::Contribution& c : outcome.contributions) {
+    ++stats_.processed.contributions;
+    if (!std::isfinite(c.value.x + c.value.y + c.value.z)) ++stats_.processed.nonFinite;
+    transport_.sendContribution(c);
   }
 }
 

@@ -109,12 +109,14 @@ class LogicalProcessor {
   void evaluate(Message message, bool primary);
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
-  bool tracedWhereItStarts(const Message& message, double& transmission);
+  bool startsInLightSourceBox(const core::BasicRay<Real>& ray) const;
+  double traceWhereItStarts(const TracedRay& ray);
   bool beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const;
   template <class Objects>
   bool visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects, core::Hit& hit,
                      double& transmission);
   void deliver(const core::BasicRayOutcome<Real>& outcome);
+  void shipContributions(const core::BasicRayOutcome<Real>& outcome);
   // Communication task
   void send(Message message);
   void countSent(int neighbour, const Message& message);
@@ -148,6 +150,7 @@ class LogicalProcessor {
   std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused
   std::vector<Message> inbox_;
   core::BasicRayOutcome<Real> outcome_;
+  core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
   // Mailboxes: an object met again in a later cell of the same ray is not tested again. The cached t is
   // the object's nearest hit over the whole ray, the very number the reference renderer computes.
   std::vector<std::uint32_t> mailboxStamp_;
