@@ -66,8 +66,8 @@ BvhShape BasicBvh<Real>::shape() const {
 
 // What the restricting constructor keeps of the whole tree: the nodes above its objects' leaves, and which
 // object of this scene each whole-scene object of those leaves is (kNotHeld if none): one lookup per object
-// in a table as long as the whole scene, where a search of the objects sorted by whole id cost a third of
-// the restriction (sombrero 3's 72,000 held objects at 4 x 4).
+// in a table as long as the whole scene, where sorting the objects by whole id and searching them cost two
+// thirds of the restriction (BM_BvhRestrict, sombrero 3: 5.1 -> 1.7 ms).
 template <class Real>
 struct BasicBvh<Real>::Restriction {
   static constexpr std::uint32_t kNotHeld = std::numeric_limits<std::uint32_t>::max();
