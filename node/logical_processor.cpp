@@ -181,10 +181,10 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     std::fill(mailboxStamp_.begin(), mailboxStamp_.end(), 0u);
     rayStamp_ = 1;
   }
-  if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmission == 1 &&
-      startsInLightSourceBox(ray.ray))
-    return finishRay(ray, core::Hit{}, traceWhereItStarts(ray));
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
+  if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmission == 1 &&
+      startsInLightSourceBox(er.o))
+    return finishRay(ray, core::Hit{}, traceWhereItStarts(ray));
   const double tMax = ray.kind == core::RayKind::Light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
   double transmission = m.transmission;
@@ -245,10 +245,10 @@ bool LogicalProcessor<Real>::beyondScene(const core::BasicRay<Real>& ray, double
 
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of
 // its light's volume, all held here: traced in one piece, exactly as the reference traces it; no message.
+// `origin`: the ray's origin in the eye frame (EyeFrameRay::o).
 template <class Real>
-bool LogicalProcessor<Real>::startsInLightSourceBox(const core::BasicRay<Real>& ray) const {
+bool LogicalProcessor<Real>::startsInLightSourceBox(const core::Vec3& origin) const {
   if (setup_.lightRays == LightRayMode::Messages) return false;
-  const core::Vec3 origin = eyeFramePoint(context_.view, core::Vec3(ray.origin));
   auto inside = [&](const core::Box& box) {
     for (int a = 0; a < 3; ++a)
       if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
@@ -266,15 +266,22 @@ double LogicalProcessor<Real>::traceWhereItStarts(const TracedRay& ray) {
 
 template <class Real>
 void LogicalProcessor<Real>::finishRay(const TracedRay& ray, const core::Hit& hit, double transmission) {
-  ++stats_.finished[std::size_t(ray.kind)];
-  outcome_.clear();
-  if (ray.kind == core::RayKind::Light)
-    shading_.finishLightRay(ray, transmission, outcome_);
-  else if (hit.found())
-    shading_.shadeHit(ray, hit, outcome_);
-  else
-    shading_.shadeMiss(ray, outcome_);
+  shade(ray, hit, transmission, outcome_);
   deliver(outcome_);
+}
+
+// The ray ends here: its contributions and the rays it spawns, into `outcome`.
+template <class Real>
+void LogicalProcessor<Real>::shade(const TracedRay& ray, const core::Hit& hit, double transmission,
+                                   core::BasicRayOutcome<Real>& outcome) {
+  ++stats_.finished[std::size_t(ray.kind)];
+  outcome.clear();
+  if (ray.kind == core::RayKind::Light)
+    shading_.finishLightRay(ray, transmission, outcome);
+  else if (hit.found())
+    shading_.shadeHit(ray, hit, outcome);
+  else
+    shading_.shadeMiss(ray, outcome);
 }
 
 // 3.4: contributions go straight to the host; new rays start where they are born. A light ray born here
@@ -295,11 +302,9 @@ void LogicalProcessor<Real>::deliver(const core::BasicRayOutcome<Real>& outcome)
     m.destination = std::uint16_t(owner);
     if (owner != setup_.id) {
       send(m);
-    } else if (spawned.kind == core::RayKind::Light && startsInLightSourceBox(spawned.ray)) {
+    } else if (spawned.kind == core::RayKind::Light && startsInLightSourceBox(er.o)) {
       ++stats_.processed.of(spawned.kind);
-      ++stats_.finished[std::size_t(spawned.kind)];
-      lightOutcome_.clear();
-      shading_.finishLightRay(spawned, traceWhereItStarts(spawned), lightOutcome_);
+      shade(spawned, core::Hit{}, traceWhereItStarts(spawned), lightOutcome_);
       shipContributions(lightOutcome_);  // a light ray spawns nothing
     } else {
       local_.push_back(m);

@@ -109,7 +109,8 @@ class LogicalProcessor {
   void evaluate(Message message, bool primary);
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
-  bool startsInLightSourceBox(const core::BasicRay<Real>& ray) const;
+  void shade(const TracedRay& ray, const core::Hit& hit, double transmission, core::BasicRayOutcome<Real>& outcome);
+  bool startsInLightSourceBox(const core::Vec3& eyeFrameOrigin) const;
   double traceWhereItStarts(const TracedRay& ray);
   bool beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const;
   template <class Objects>
