@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <optional>
+#include <type_traits>
 
 #include "core/brute_force.h"
 #include "core/bvh.h"
@@ -27,15 +28,17 @@ double secondsSince(Clock::time_point start) {
 
 // Progress that follows the work (rays finished against every ray the image will trace) needs the total:
 // estimated from one pixel's tree per 8x8 window (3.7.1's sub-sampling, about 1/64 of a trace), and only
-// when progress is shown.
+// when progress is shown. `built`: the renderer's own BVH of the scene when it is one in double, traced
+// instead of building another.
 constexpr int kProgressSubsampleWindow = 8;
 
 void beginTracing(Progress& progress, const core::Scene& scene, const core::View& view,
-                  const core::Whitted& shading, bool shown) {
+                  const core::Whitted& shading, bool shown, const core::Bvh* built = nullptr) {
   if (!shown) return progress.phase("tracing");
   progress.phase("estimating");
   const LoadSample sample =
-      subsampleLoad(scene, view, shading, kProgressSubsampleWindow, LoadMetric::Rays, true);
+      built ? subsampleLoad(*built, view, shading, kProgressSubsampleWindow, LoadMetric::Rays, true)
+            : subsampleLoad(scene, view, shading, kProgressSubsampleWindow, LoadMetric::Rays, true);
   progress.phase("tracing", estimatedTotalRays(sample, view));
 }
 
@@ -93,7 +96,9 @@ RenderResult renderImageParallelIn(const core::Scene& scene, const RenderSetting
   result.precision = core::kPrecisionOf<Real>;
   result.workers = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   result.preprocessSeconds = secondsSince(start);
-  beginTracing(progress, scene, view, shading, settings.progress);
+  const core::Bvh* built = nullptr;
+  if constexpr (std::is_same_v<Real, double>) built = &database;
+  beginTracing(progress, scene, view, shading, settings.progress, built);
   const auto traceStart = Clock::now();
   tbb::combinable<core::TraceCounters> counters;
   // Each sample row belongs to exactly one task, so frame buffer slots never have two writers. Every task
