@@ -298,20 +298,34 @@ void BM_BvhRestrict(benchmark::State& state, const char* name) {
 BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BvhRestrict, balls4, "balls")->Unit(benchmark::kMillisecond);
 
-// The host's box tree over every object's world box, for pruning (built twice per machine run: world and
-// eye-frame boxes). items/s: objects.
-void BM_BoxTreeBuild(benchmark::State& state, const char* name) {
-  const Scene scene = makeSpdScene(name);
+// The host's pruning box tree over every object's world box, of the sampling BVH's shape (made twice per
+// machine run: world and eye-frame boxes), and where the scene lies (4 boxes of median splits). items/s:
+// objects.
+std::vector<Box> worldBoxesOf(const Scene& scene) {
   std::vector<Box> boxes;
   for (const Object& o : scene.objects) boxes.push_back(boundsOf(o, 0));
+  return boxes;
+}
+void BM_BoxTreeOfBvhShape(benchmark::State& state, const char* name) {
+  const Scene scene = makeSpdScene(name);
+  const Whitted shading(scene, ShadingOptions{});
+  const BvhShape shape = Bvh(scene, shading).shape();
+  const std::vector<Box> boxes = worldBoxesOf(scene);
   for (auto _ : state) {
-    const host::BoxTree tree(boxes);
+    const host::BoxTree tree(boxes, shape);
     benchmark::DoNotOptimize(&tree);
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(boxes.size()));
 }
-BENCHMARK_CAPTURE(BM_BoxTreeBuild, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BoxTreeBuild, balls4, "balls")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BoxTreeOfBvhShape, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BoxTreeOfBvhShape, balls4, "balls")->Unit(benchmark::kMillisecond);
+void BM_MedianCover(benchmark::State& state, const char* name) {
+  const std::vector<Box> boxes = worldBoxesOf(makeSpdScene(name));
+  for (auto _ : state) benchmark::DoNotOptimize(host::medianCover(boxes, 4));
+  state.SetItemsProcessed(state.iterations() * std::int64_t(boxes.size()));
+}
+BENCHMARK_CAPTURE(BM_MedianCover, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MedianCover, balls4, "balls")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace raycube::core

@@ -5,25 +5,24 @@
 
 namespace raycube::host {
 
+namespace {
+constexpr std::uint32_t kLeafSize = 4;
+
 // A box as a median split sees it, kept in split order so every pass reads memory in sequence.
 struct MedianItem {
   core::Box box;
   core::Vec3 centre;
-  std::uint32_t object;
 };
-
-namespace {
-constexpr std::uint32_t kLeafSize = 4;
 
 std::vector<MedianItem> itemsOf(const std::vector<core::Box>& boxes) {
   std::vector<MedianItem> items;
   items.reserve(boxes.size());
-  for (std::uint32_t i = 0; i < boxes.size(); ++i) items.push_back(MedianItem{boxes[i], boxes[i].center(), i});
+  for (const core::Box& b : boxes) items.push_back(MedianItem{b, b.center()});
   return items;
 }
 
 // Items [begin, end): their bounds, and unless they stay a leaf, split at `mid` by the median of their
-// centres along the centres' widest axis (balanced, so a tree of them is log2 of the count deep).
+// centres along the centres' widest axis (balanced: each split halves the count).
 struct MedianSplit {
   core::Box bounds;
   bool leaf = true;
@@ -47,34 +46,6 @@ MedianSplit splitAtMedian(std::vector<MedianItem>& items, std::uint32_t begin, s
 }
 
 }  // namespace
-
-BoxTree::BoxTree(const std::vector<core::Box>& boxes) {
-  std::vector<MedianItem> items = itemsOf(boxes);
-  nodes_.reserve(2 * items.size() / kLeafSize + 2);
-  if (!items.empty()) {
-    nodes_.push_back(Node{});
-    build(items, 0, std::uint32_t(items.size()), 0);
-  }
-  order_.reserve(items.size());
-  leafBoxes_.reserve(items.size());
-  for (const MedianItem& item : items) {
-    order_.push_back(item.object);
-    leafBoxes_.push_back(item.box);
-  }
-}
-
-// Fills node `index` with items [begin, end), its children next to each other, their subtrees after them.
-void BoxTree::build(std::vector<MedianItem>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index) {
-  const MedianSplit split = splitAtMedian(items, begin, end);
-  nodes_[index] = Node{split.bounds, begin, end, 0};
-  if (split.leaf) return;
-  const std::uint32_t children = std::uint32_t(nodes_.size());
-  nodes_.push_back(Node{});
-  nodes_.push_back(Node{});
-  nodes_[index].children = children;
-  build(items, begin, split.mid, children);
-  build(items, split.mid, end, children + 1);
-}
 
 BoxTree::BoxTree(const std::vector<core::Box>& boxes, const core::BvhShape& shape) {
   if (boxes.empty()) return;

@@ -13,14 +13,11 @@
 
 namespace raycube::host {
 
-struct MedianItem;  // a box as BoxTree's median splits see it
-
 class BoxTree {
  public:
-  // Median splits of the boxes' centres along their widest axis, down to leaves of a few boxes.
-  explicit BoxTree(const std::vector<core::Box>& boxes);
   // The shape of a BVH over the same objects (its order lists every index of `boxes`), with these boxes'
-  // own bounds: linear in the objects where a build is n log n (the host's sampling BVH is at hand).
+  // own bounds: linear in the objects where a build of its own would be n log n (the host's sampling BVH is
+  // at hand).
   BoxTree(const std::vector<core::Box>& boxes, const core::BvhShape& shape);
 
   // Indices of the boxes passing mayHold(box), whose every enclosing node also passes, in ascending order.
@@ -38,7 +35,6 @@ class BoxTree {
     std::uint32_t begin = 0, end = 0;  // the range of order_ its subtree holds
     std::uint32_t children = 0;        // inner: left child here, right child next; 0: a leaf
   };
-  void build(std::vector<MedianItem>& items, std::uint32_t begin, std::uint32_t end, std::uint32_t index);
   void adopt(const core::BvhShape& shape, std::uint32_t shapeNode, std::uint32_t index);
   void sortAscending(std::vector<std::uint32_t>& found) const;
   std::vector<Node> nodes_;
@@ -46,9 +42,9 @@ class BoxTree {
   std::vector<core::Box> leafBoxes_;  // per entry of order_
 };
 
-// At most `most` boxes (at least one, unless there are none) that together hold every box: the nodes of
-// BoxTree(boxes)'s median splits, opening the largest first, so the cover hugs the boxes as closely as that
-// many boxes can. Only the nodes opened are split.
+// At most `most` boxes (at least one, unless there are none) that together hold every box: the parts of
+// median splits of the boxes' centres along their widest axis, opening the largest part first, so the cover
+// hugs the boxes as closely as that many boxes can. Only the parts opened are split.
 std::vector<core::Box> medianCover(const std::vector<core::Box>& boxes, std::size_t most);
 
 template <class MayHold, class HoldsAll>
