@@ -41,7 +41,7 @@ LoadSample subsampleLoad(const core::Scene& scene, const core::View& view, const
                          int window, LoadMetric metric, bool lightRaysWhereTheyStart,
                          const std::vector<core::Box>& sceneBounds = {});
 // The same, tracing in a BVH of the whole scene built beforehand (for the shading's scene).
-LoadSample subsampleLoad(const core::Bvh& scene, const core::View& view, const core::Whitted& shading,
+LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, const core::Whitted& shading,
                          int window, LoadMetric metric, bool lightRaysWhereTheyStart,
                          const std::vector<core::Box>& sceneBounds = {});
 
