@@ -162,6 +162,7 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
   const std::uint32_t count = end - begin;
   int bestAxis = -1, bestBin = 0;
   double bestCost = double(count);  // cost of a leaf, in object tests
+  double bestWeighted = std::numeric_limits<double>::infinity();  // the best split's areas times counts
   // A bin per object in small nodes (no cost to set up bins nothing falls in), kBins in large ones.
   const int bins = int(std::min<std::uint32_t>(count, kBins));
   const bool split = count > kLeafSize && depth < kMaxDepth;
@@ -170,7 +171,7 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
   auto& binCounts = scratch.counts;
   for (int axis = 0; axis < 3 && split; ++axis) {
     std::fill_n(binBoxes[axis], bins, Box{});
-    std::fill_n(binCounts[axis], bins, 0u);
+    std::fill_n(binCounts[axis], kBins, 0u);  // all of them: a fixed length fills in two stores
   }
   const Vec3 scale = binScale(centroids, bins);
   for (std::uint32_t i = begin; i < end && split; ++i) {
@@ -203,10 +204,14 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
       acc.extend(binBox[b]);
       n += binCount[b];
       if (n == 0 || rightCount[b + 1] == 0) continue;
-      const double cost =
-          kTraversalCost + (acc.halfArea() * n + rightArea[b + 1] * rightCount[b + 1]) / bounds.halfArea();
+      // Rounding is monotonic: a candidate whose area-weighted count is no smaller than the best one's
+      // cannot cost less, and needs no division.
+      const double weighted = acc.halfArea() * n + rightArea[b + 1] * rightCount[b + 1];
+      if (!(weighted < bestWeighted)) continue;
+      const double cost = kTraversalCost + weighted / bounds.halfArea();
       if (cost < bestCost) {
         bestCost = cost;
+        bestWeighted = weighted;
         bestAxis = axis;
         bestBin = b;
       }
