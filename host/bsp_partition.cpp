@@ -47,8 +47,8 @@ struct Splitter {
         above += e.hi[i] >= k ? e.weight[i] : 0;
       }
     } else {
-      // A piece on one side of the line weighs there whole (its share (k - lo) / (hi - lo) rounds to exactly
-      // 1 or 0, and adding w * 0 changes no sum of weights): only the pieces the line cuts need the division.
+      // A piece on one side of the line weighs there whole; a piece the line cuts weighs on each side what
+      // clipping it there would give it (costOfPiece: one each, the work share by length).
       for (std::size_t i = 0; i < n; ++i) {
         const double lo = e.lo[i], hi = e.hi[i], w = e.weight[i];
         if (lo >= k) {
@@ -57,8 +57,8 @@ struct Splitter {
           below += w;
         } else {
           const double f = std::clamp((k - lo) / (hi - lo), 0.0, 1.0);
-          below += w * f;
-          above += w * (1 - f);
+          below += costOfPiece(w, f);
+          above += costOfPiece(w, 1 - f);
         }
       }
     }

@@ -14,9 +14,10 @@ namespace raycube::host {
 namespace {
 
 // The refined metric: a ray weighs one (its message, walk set-up and shading) plus this share of its work
-// relative to the mean ray's. Measured on balls2 at 128x128 (README): 0.1 keeps the rays processed within
-// 12% of the mean at 16 and 32 processors while leaning towards the expensive rays; larger shares even
-// out the work further but let the ray counts drift apart (0.5: 1.23x at 32 processors).
+// relative to the mean ray's. Measured on balls2 at 128x128 (README, figure 15): 0.1 keeps the rays
+// processed within 16% of the mean at 16 and 32 processors and the work within 1.6x of it, where the rays
+// metric leaves 1.7x; larger shares even out the work further but let the ray counts drift apart (0.5:
+// 1.23x at 32 processors, measured when the one was still shared by length).
 constexpr double kWorkShare = 0.1;
 
 // Projects the part of a ray in front of the eye (z >= zNear) between t0 and t1 (t1 may be infinite).
@@ -111,8 +112,9 @@ LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, cons
     sample.pixelsSampled += row.pixelsSampled;
   }
   if (metric == LoadMetric::Cost && !sample.segments.empty()) {
-    // A ray counts one, plus its work relative to the mean ray's: every ray costs its message, walk set-up
-    // and shading, and some much more in intersection tests.
+    // A ray counts one, plus its work relative to the mean ray's: every piece of it costs a message and a
+    // walk set-up where it enters a region (clipSegment keeps the one whole), and some rays much more in
+    // intersection tests.
     double mean = 0;
     for (const ScreenSegment& s : sample.segments) mean += s.weight;
     mean /= double(sample.segments.size());
@@ -143,7 +145,7 @@ bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, doubl
   if (!(edge(-dx, in.x0 - x0) && edge(dx, x1 - in.x0) && edge(-dy, in.y0 - y0) && edge(dy, y1 - in.y0)))
     return false;
   out = ScreenSegment{in.x0 + a * dx, in.y0 + a * dy, in.x0 + b * dx, in.y0 + b * dy, in.weight};
-  if (metric == LoadMetric::Cost && (dx != 0 || dy != 0)) out.weight = in.weight * (b - a);
+  if (metric == LoadMetric::Cost && (dx != 0 || dy != 0)) out.weight = costOfPiece(in.weight, b - a);
   return true;
 }
 

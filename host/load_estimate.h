@@ -16,8 +16,13 @@ namespace raycube::host {
 enum class LoadMetric : std::uint8_t {
   Rays,  // the paper's: every ray (every piece of a split ray) counts one
   Cost,  // refined: a ray weighs one plus a share of the traversal steps and intersection tests its
-         // sub-sampled twin cost (relative to the mean), shared between its pieces by projected length
+         // sub-sampled twin cost (relative to the mean); every piece of a split ray weighs the one whole
+         // (its message and walk set-up, as in the ray metric) and the share by its projected length
 };
+
+// A cost-metric weight (one plus a share of work) for the piece holding `fraction` of the ray's projected
+// length: the one whole, the share by length.
+inline double costOfPiece(double weight, double fraction) { return 1 + (weight - 1) * fraction; }
 
 // A projected ray segment in continuous sample-boundary coordinates (x in [0, samplesX], y in [0, samplesY]).
 struct ScreenSegment {
@@ -50,9 +55,9 @@ LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, cons
 // progress indication compares the rays finished with.
 double estimatedTotalRays(const LoadSample& sample, const core::View& view);
 
-// The part of a segment inside a rectangle (Liang-Barsky); false when none. Its weight is scaled by the kept
-// fraction of length for the cost metric and kept whole for the ray metric (figure 9: a split ray counts
-// in both regions).
+// The part of a segment inside a rectangle (Liang-Barsky); false when none. For the ray metric its weight is
+// kept whole (figure 9: a split ray counts in both regions); for the cost metric the piece counts one
+// whole and the work share above it by the kept fraction of length (costOfPiece).
 bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, double y1, LoadMetric metric,
                  ScreenSegment& out);
 
@@ -61,8 +66,8 @@ std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, co
                                   LoadMetric metric);
 
 // What each area's processor will do, for progress: the ray segments it will evaluate (every piece of a
-// split ray counts, as in the ray metric), and their work, each segment weighing one plus its sub-sampled
-// twin's steps and tests, shared by length (as in the cost metric, unscaled), whatever metric partitioned.
+// split ray counts, as in the ray metric), and their work, each piece weighing one plus its sub-sampled
+// twin's steps and tests shared by length (as in the cost metric, unscaled), whatever metric partitioned.
 struct ExpectedWork {
   std::vector<double> segments, work;
 };

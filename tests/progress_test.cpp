@@ -175,11 +175,12 @@ TEST(MachineProgress, ExpectedWorkFollowsTheSubsampledSegments) {
   sample.raysPerSegment = 4;
   sample.segments = {{0.5, 0.5, 0.5, 0.5, 1, 9}, {1.5, 0.5, 1.5, 0.5, 1, 0}, {0.5, 0.5, 1.5, 0.5, 1, 3}};
   const ExpectedWork e = expectedWork({{0, 1, 0, 1}, {1, 2, 0, 1}}, sample);  // x0, x1, y0, y1
-  // A split ray counts whole in each area; its work is shared by the length in each.
+  // A split ray counts whole in each area; of its work, the one (its message and walk set-up) counts whole in
+  // each too, its steps and tests by the length in each.
   EXPECT_DOUBLE_EQ(e.segments[0], 4 * 2);
   EXPECT_DOUBLE_EQ(e.segments[1], 4 * 2);
-  EXPECT_DOUBLE_EQ(e.work[0], 4 * (10 + 4 * 0.5));
-  EXPECT_DOUBLE_EQ(e.work[1], 4 * (1 + 4 * 0.5));
+  EXPECT_DOUBLE_EQ(e.work[0], 4 * (10 + 1 + 3 * 0.5));
+  EXPECT_DOUBLE_EQ(e.work[1], 4 * (1 + 1 + 3 * 0.5));
 }
 
 // What the machine reports, as a listener hears it: the phases in the order the machine goes through them,
