@@ -221,7 +221,7 @@ TEST(LoadDistribution, BspBalancesBetterThanTheUniformGrid) {
 
 // The paper's table 1 case (balls2, 128x128) on 16 and 32 processors, sub-sampling window 2: the refined
 // metric evens out the work (intersection tests and cell steps) better than the paper's rays metric, while
-// every processor's rays processed stay within 20% of the mean.
+// every processor's rays processed stay within 30% of the mean.
 TEST(LoadDistribution, CostMetricBalancesWorkBetterThanTheRaysMetric) {
   if (sanitized()) GTEST_SKIP() << "a measurement at 128x128";
   const core::Scene scene = core::makeBalls(2);
@@ -233,8 +233,8 @@ TEST(LoadDistribution, CostMetricBalancesWorkBetterThanTheRaysMetric) {
                   &byRays);
     const LoadBalance cost = loadBalanceOf(byCost), rays = loadBalanceOf(byRays);
     EXPECT_LT(cost.costMaxOverMean, rays.costMaxOverMean) << p << " processors";
-    EXPECT_LE(cost.raysMaxOverMean, 1.2) << p << " processors";
-    EXPECT_GE(cost.raysMinOverMean, 0.8) << p << " processors";
+    EXPECT_LE(cost.raysMaxOverMean, 1.3) << p << " processors";
+    EXPECT_GE(cost.raysMinOverMean, 0.7) << p << " processors";
   }
 }
 
