@@ -31,7 +31,7 @@
 #include "host/machine.h"
 #include "host/machine_checks.h"
 #include "host/machine_report.h"
-#include "host/mpi_session.h"
+#include "host/engines.h"
 #include "host/distributed_report.h"
 #include "host/progress.h"
 #include "host/run_report.h"
@@ -389,7 +389,7 @@ int runRender(const RenderCommand& cmd) {
     if (!machineMode) throw std::invalid_argument("--transport mpi needs --mode machine");
     if (!cmd.emulate.empty() || !cmd.platformPath.empty())
       throw std::invalid_argument("--transport mpi runs on real ranks: it excludes --emulate and --platform");
-    if (hostMpiLink() == nullptr) throw std::invalid_argument("--transport mpi needs mpirun -np N (N >= 2)");
+    if (!hostsMpiRanks()) throw std::invalid_argument("--transport mpi needs mpirun -np N (N >= 2)");
   }
   requireWritable(cmd.output, "--output", {".exr", ".png"});
   requireWritable(cmd.statsPath, "--stats", {});

@@ -1,8 +1,15 @@
+#include <iostream>
+
 #include "host/cli.h"
-#include "host/mpi_session.h"
+#include "host/engines.h"
 
 int main(int argc, char** argv) {
   using namespace raycube::host;
-  if (asksForMpi(argc, argv)) return runUnderMpi(argc, argv, [&] { return runCommandLine(argc, argv); });
-  return runCommandLine(argc, argv);
+  if (!asksForMpi(argc, argv)) return runCommandLine(argc, argv);
+  try {
+    return distributedEngines().runUnderMpi(argc, argv, [&] { return runCommandLine(argc, argv); });
+  } catch (const std::exception& e) {
+    std::cerr << "raycube: " << e.what() << "\n";
+    return 2;
+  }
 }

@@ -3,7 +3,6 @@
 #include <mpi.h>
 
 #include <cstdlib>
-#include <cstring>
 #include <iostream>
 #include <string>
 
@@ -52,15 +51,6 @@ int serveAsNodes(queues::MpiLink& link) {
 }
 
 }  // namespace
-
-bool asksForMpi(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--transport=mpi") == 0) return true;
-    if (std::strcmp(argv[i], "--transport") == 0 && i + 1 < argc && std::strcmp(argv[i + 1], "mpi") == 0)
-      return true;
-  }
-  return false;
-}
 
 queues::MpiLink* hostMpiLink() { return gHostLink; }
 

@@ -7,9 +7,6 @@
 
 namespace raycube::host {
 
-// Whether the command line asks for the MPI engine (--transport mpi).
-bool asksForMpi(int argc, char** argv);
-
 // Starts MPI, runs hostMain on rank 0 and the processors' service on the others, stops MPI; returns this
 // rank's exit status. Outside an MPI launcher, or with one rank, says so and returns 2 without hanging.
 int runUnderMpi(int argc, char** argv, const std::function<int()>& hostMain);

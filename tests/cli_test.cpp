@@ -68,9 +68,9 @@ class Cli : public testing::Test {
     if (!dir_.empty()) fs::remove_all(dir_);
   }
 
-  // Runs `raycube <arguments>` in the test's own directory, capturing stdout and stderr.
-  Outcome run(const std::string& arguments) const {
-    std::string environment;
+  // Runs `raycube <arguments>` in the test's own directory, capturing stdout and stderr; `environment`:
+  // variable assignments for the command ("NAME=value ").
+  Outcome run(const std::string& arguments, const std::string& environment = "") const {
     const std::string command = "cd " + quoted(dir_.string()) + " && " + environment + quoted(binary_) + " " +
                                 arguments + " >stdout.txt 2>stderr.txt";
     const int status = std::system(command.c_str());
@@ -82,9 +82,10 @@ class Cli : public testing::Test {
   }
 
   // A failed run: non-zero exit, exactly one line on stderr, containing every one of `names`.
-  void expectOneLineError(const std::string& arguments, std::initializer_list<std::string> names) const {
-    SCOPED_TRACE("raycube " + arguments);
-    const Outcome r = run(arguments);
+  void expectOneLineError(const std::string& arguments, std::initializer_list<std::string> names,
+                          const std::string& environment = "") const {
+    SCOPED_TRACE(environment + "raycube " + arguments);
+    const Outcome r = run(arguments, environment);
     EXPECT_NE(r.exitCode, 0);
     ASSERT_FALSE(r.err.empty());
     EXPECT_EQ(r.err.back(), '\n') << r.err;
@@ -373,6 +374,19 @@ TEST_F(Cli, TradeoffWritesPlotAndReport) {
   const Words redrawn = words(slurp(dir_ / "u.svg")), original = words(svg);
   EXPECT_EQ(redrawn.text, original.text);
   EXPECT_EQ(redrawn.numbers, original.numbers);
+}
+
+// host/engines.h: SimGrid and Open MPI are loaded only for the runs that use them, and their absence is
+// said in one line naming where the module was looked for.
+TEST_F(Cli, EnginesModuleIsLoadedOnlyWhenARunNeedsIt) {
+  const std::string missing = "RAYCUBE_ENGINES=" + quoted((dir_ / "nowhere" / "raycube_engines.so").string()) + " ";
+  const Outcome threads = run("render --balls 1 --size 16x16 --mode machine --procs 2x2 -o x.png", missing);
+  EXPECT_EQ(threads.exitCode, 0) << threads.err;
+  EXPECT_TRUE(fs::exists(dir_ / "x.png"));
+  fs::remove(dir_ / "x.png");
+  expectOneLineError("render --balls 1 --size 16x16 --mode machine --procs 2x2 --emulate ipsc1 -o x.png",
+                     {"raycube_engines", "nowhere/raycube_engines.so"}, missing);
+  expectOneLineError("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2", {"RAYCUBE_ENGINES"}, missing);
 }
 
 TEST_F(Cli, ScalingWritesPlotAndReport) {
