@@ -83,15 +83,20 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::
   if (objects.empty()) return;
   Restriction r{whole, std::vector<char>(whole.nodes.size(), 0),
                 std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld)};
+  std::size_t marked = 0;
   for (std::uint32_t o : objects) {
     const std::uint32_t id = wholeIdOf[o];
     r.localOf[id] = o;
     // Mark the way up from the object's leaf, as far as a way already marked.
     for (std::uint32_t n = whole.leafOf[id]; !r.kept[n]; n = whole.parent[n]) {
       r.kept[n] = 1;
+      ++marked;
       if (n == 0) break;
     }
   }
+  // The copy has at most the marked nodes: reserved, not doubled as it grows (64 processors hold 9 MB of
+  // such trees at jacks 4's 8 x 8, a quarter of it capacity never used).
+  nodes_.reserve(marked);
   order_.reserve(objects.size());
   keep(r, 0);
 }
