@@ -54,8 +54,6 @@ class RegionMap {
   std::size_t adjacencyEdges() const;  // undirected
 
  private:
-  int sampleIndex(int axis, double value, int lo, int hi) const;
-
   std::vector<SampleRect> areas_;
   ScreenLines lines_;
   int samplesX_, samplesY_;

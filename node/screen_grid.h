@@ -2,6 +2,7 @@
 // Priol & Bouatouch 3.1: the screen cut into pixel areas. Everything the machine partitions is a rectangle
 // of sample indices; its faces are the planes through the eye at the sample boundaries, and the outermost
 // boundaries are pushed to infinity so that the edge regions cover everything in front of the eye.
+#include <cmath>
 #include <vector>
 
 #include "core/tolerances.h"
@@ -29,14 +30,33 @@ class ScreenLines {
     s_.front() = q_.front() = -core::kInfinity;
     s_.back() = core::kInfinity;
     q_.back() = core::kInfinity;
+    for (int axis = 0; axis < 2; ++axis) {
+      const std::vector<double>& lines = axis == 0 ? s_ : q_;
+      const int interior = int(lines.size()) - 2;  // boundaries 1 .. samples - 1 are finite
+      first_[axis] = interior > 0 ? lines[1] : 0.0;
+      perStep_[axis] = interior > 1 ? (interior - 1) / (lines[interior] - lines[1]) : 0.0;
+    }
   }
   // axis 0: columns (s), axis 1: rows (q)
   double at(int axis, int k) const { return axis == 0 ? s_[k] : q_[k]; }
   int samples(int axis) const { return axis == 0 ? samplesX_ : samplesY_; }
 
+  // The sample k in [lo, hi) whose boundaries hold value (at(k) <= value < at(k + 1)), clamped to the range;
+  // lo for NaN. The boundaries are evenly spaced: a guess from the spacing, corrected against the table (a
+  // binary search reads a cold table ten times per region a ray leaves: 5% of mount 6's run at 8 x 8).
+  int sampleIndex(int axis, double value, int lo, int hi) const {
+    if (!(value == value)) return lo;
+    const double guess = std::floor(1.0 + (value - first_[axis]) * perStep_[axis]);  // NaN for inf * 0
+    int k = guess >= hi - 1 ? hi - 1 : guess > lo ? int(guess) : lo;
+    while (k + 1 < hi && at(axis, k + 1) <= value) ++k;
+    while (k > lo && !(at(axis, k) <= value)) --k;
+    return k;
+  }
+
  private:
   int samplesX_, samplesY_;
   std::vector<double> s_, q_;
+  double first_[2], perStep_[2];  // boundary 1 and boundaries per unit, per axis
 };
 
 }  // namespace raycube::node

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "core/balls.h"
@@ -33,6 +34,44 @@ TEST(ScreenLines, OuterBoundariesAreAtInfinityAndInnerOnesIncrease) {
   EXPECT_EQ(f.lines.at(1, 48), core::kInfinity);
   for (int k = 1; k < 63; ++k) EXPECT_LT(f.lines.at(0, k), f.lines.at(0, k + 1));
   for (int k = 1; k < 47; ++k) EXPECT_LT(f.lines.at(1, k), f.lines.at(1, k + 1));
+}
+
+// The sample holding a screen coordinate, searched from a guess, is the one a binary search of the table
+// finds: on the boundaries themselves, a rounding either side of them, far outside, infinite and NaN, in
+// every sub-range, and for the one- and two-sample screens whose spacing says nothing.
+TEST(ScreenLines, SampleIndexIsTheTablesBinarySearch) {
+  auto reference = [](const ScreenLines& lines, int axis, double value, int lo, int hi) {
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      (lines.at(axis, mid) <= value ? lo : hi) = mid;
+    }
+    return lo;
+  };
+  core::Scene scene = core::makeBalls(1);
+  std::mt19937 random(7);
+  for (const auto& [width, height] : {std::pair{64, 48}, std::pair{1, 1}, std::pair{2, 3}, std::pair{513, 7}}) {
+    const core::View view{scene.camera, width, height, core::Sampling::Centers};
+    const ScreenLines lines{view};
+    for (int axis = 0; axis < 2; ++axis) {
+      const int samples = lines.samples(axis);
+      std::vector<double> values{core::kInfinity, -core::kInfinity, std::nan(""), 1e300, -1e300, 0.0};
+      for (int k = 1; k < samples; ++k)
+        for (double v : {lines.at(axis, k), std::nextafter(lines.at(axis, k), -core::kInfinity),
+                         std::nextafter(lines.at(axis, k), core::kInfinity)})
+          values.push_back(v);
+      if (samples >= 3) {  // between the finite boundaries and a little beyond them
+        std::uniform_real_distribution<double> anywhere(2 * lines.at(axis, 1) - lines.at(axis, samples - 1),
+                                                        2 * lines.at(axis, samples - 1) - lines.at(axis, 1));
+        for (int i = 0; i < 200; ++i) values.push_back(anywhere(random));
+      }
+      for (double value : values)
+        for (int lo = 0; lo < samples; lo += std::max(1, samples / 5))
+          for (int hi = lo + 1; hi <= samples; hi += std::max(1, samples / 4))
+            ASSERT_EQ(lines.sampleIndex(axis, value, lo, hi), reference(lines, axis, value, lo, hi))
+                << width << "x" << height << " axis " << axis << " value " << value << " in [" << lo << ", " << hi
+                << ")";
+    }
+  }
 }
 
 TEST(EyeFrameRay, EyeRaysStayOnTheirSampleAndNeverCrossAFace) {
