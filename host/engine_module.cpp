@@ -12,12 +12,12 @@ namespace {
 
 class Engines final : public DistributedEngines {
  public:
-  std::unique_ptr<MachineEngine<float>> makeFloat(const MachineSettings& settings,
-                                                  const std::vector<std::uint32_t>& hypercubeNode) const override {
+  std::unique_ptr<MachineEngine<float>> makeFloat(
+      const MachineSettings& settings, const std::vector<std::uint32_t>& hypercubeNode) const override {
     return makeFor<float>(settings, hypercubeNode);
   }
-  std::unique_ptr<MachineEngine<double>> makeDouble(const MachineSettings& settings,
-                                                    const std::vector<std::uint32_t>& hypercubeNode) const override {
+  std::unique_ptr<MachineEngine<double>> makeDouble(
+      const MachineSettings& settings, const std::vector<std::uint32_t>& hypercubeNode) const override {
     return makeFor<double>(settings, hypercubeNode);
   }
   int runUnderMpi(int argc, char** argv, const std::function<int()>& hostMain) const override {
@@ -30,9 +30,11 @@ class Engines final : public DistributedEngines {
   static std::unique_ptr<MachineEngine<Real>> makeFor(const MachineSettings& settings,
                                                       const std::vector<std::uint32_t>& hypercubeNode) {
     if (settings.mpi) {
-      if (settings.emulate) throw std::invalid_argument("the MPI engine runs on real ranks, not in simulated time");
+      if (settings.emulate)
+        throw std::invalid_argument("the MPI engine runs on real ranks, not in simulated time");
       queues::MpiLink* link = hostMpiLink();
-      if (link == nullptr) throw std::invalid_argument("the MPI engine runs on rank 0 of mpirun (host/mpi_session.h)");
+      if (link == nullptr)
+        throw std::invalid_argument("the MPI engine runs on rank 0 of mpirun (host/mpi_session.h)");
       return std::make_unique<MpiMachine<Real>>(*link, settings.queueCapacity, settings.rayBatch,
                                                 settings.jitterSeed);
     }

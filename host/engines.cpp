@@ -34,16 +34,21 @@ void loadModule() {
     // initialiser provides the engines.
     if (dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL) != nullptr && gEngines != nullptr) return;
     const char* why = dlerror();
-    failures += "; " + (why != nullptr ? std::string(why) : path.string() + ": loaded, but provides no engines");
+    failures +=
+        "; " + (why != nullptr ? std::string(why) : path.string() + ": loaded, but provides no engines");
   }
-  throw std::runtime_error("the SimGrid and MPI engines (" + std::string(kModuleName) +
-                           ") could not be loaded: build the target raycube_engines, or set RAYCUBE_ENGINES to "
-                           "its path" + failures);
+  throw std::runtime_error(
+      "the SimGrid and MPI engines (" + std::string(kModuleName) +
+      ") could not be loaded: build the target raycube_engines, or set RAYCUBE_ENGINES to "
+      "its path" +
+      failures);
 }
 
 }  // namespace
 
-void provideDistributedEngines(const DistributedEngines& engines) { gEngines = &engines; }
+void provideDistributedEngines(const DistributedEngines& engines) {
+  gEngines = &engines;
+}
 
 const DistributedEngines& distributedEngines() {
   static std::mutex loading;
@@ -52,7 +57,9 @@ const DistributedEngines& distributedEngines() {
   return *gEngines;
 }
 
-bool hostsMpiRanks() { return gEngines != nullptr && gEngines->hostsMpiRanks(); }
+bool hostsMpiRanks() {
+  return gEngines != nullptr && gEngines->hostsMpiRanks();
+}
 
 bool asksForMpi(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {

@@ -49,7 +49,8 @@ TEST(ScreenLines, SampleIndexIsTheTablesBinarySearch) {
   };
   core::Scene scene = core::makeBalls(1);
   std::mt19937 random(7);
-  for (const auto& [width, height] : {std::pair{64, 48}, std::pair{1, 1}, std::pair{2, 3}, std::pair{513, 7}}) {
+  const std::pair<int, int> screens[] = {{64, 48}, {1, 1}, {2, 3}, {513, 7}};
+  for (const auto& [width, height] : screens) {
     const core::View view{scene.camera, width, height, core::Sampling::Centers};
     const ScreenLines lines{view};
     for (int axis = 0; axis < 2; ++axis) {
@@ -68,8 +69,8 @@ TEST(ScreenLines, SampleIndexIsTheTablesBinarySearch) {
         for (int lo = 0; lo < samples; lo += std::max(1, samples / 5))
           for (int hi = lo + 1; hi <= samples; hi += std::max(1, samples / 4))
             ASSERT_EQ(lines.sampleIndex(axis, value, lo, hi), reference(lines, axis, value, lo, hi))
-                << width << "x" << height << " axis " << axis << " value " << value << " in [" << lo << ", " << hi
-                << ")";
+                << width << "x" << height << " axis " << axis << " value " << value << " in [" << lo << ", "
+                << hi << ")";
     }
   }
 }
