@@ -11,6 +11,11 @@ namespace raycube::core {
 
 namespace {
 constexpr std::uint32_t kLeafSize = 1;
+// A restricted tree's subtree holding this few of its objects becomes one leaf: the objects a region
+// holds are scattered over the whole tree, so a leaf per object cost two nodes per object (jacks 4 at 8 x 8:
+// 7.5 MB of trees over 55,000 held copies; 2 saves 3 MB for the same tests, 4 another 2 MB for 15% more
+// object tests on mount 6 and 45% on sombrero 3, and looked slower on balls 4).
+constexpr std::uint32_t kRestrictedLeafSize = 2;
 // A build on every core spawns a thread for the right subtree of the first two splits whose smaller side
 // holds at least kSpawnObjects / 2 objects (four subtrees: an uneven split still leaves two cores busy; a
 // thread costs tens of microseconds, two thousand objects' build about a millisecond).
@@ -64,15 +69,16 @@ BvhShape BasicBvh<Real>::shape() const {
   return out;
 }
 
-// What the restricting constructor keeps of the whole tree: the nodes above its objects' leaves, and which
-// object of this scene each whole-scene object of those leaves is (kNotHeld if none): one lookup per object
-// in a table as long as the whole scene, where sorting the objects by whole id and searching them cost two
-// thirds of the restriction (BM_BvhRestrict, sombrero 3: 5.1 -> 1.7 ms).
+// What the restricting constructor keeps of the whole tree: how many of its objects each whole node holds
+// (the nodes above its objects' leaves hold some), and which object of this scene each whole-scene object of
+// those leaves is (kNotHeld if none): one lookup per object in a table as long as the whole scene, where
+// sorting the objects by whole id and searching them cost two thirds of the restriction (BM_BvhRestrict,
+// sombrero 3: 5.1 -> 1.7 ms).
 template <class Real>
 struct BasicBvh<Real>::Restriction {
   static constexpr std::uint32_t kNotHeld = std::numeric_limits<std::uint32_t>::max();
   const BvhShape& whole;
-  std::vector<char> kept;                // per whole node
+  std::vector<std::uint32_t> keptBelow;  // per whole node
   std::vector<std::uint32_t> localOf;    // per whole object
 };
 
@@ -81,16 +87,15 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::
                          const BvhShape& whole, std::span<const std::uint32_t> wholeIdOf)
     : scene_(scene), shading_(shading) {
   if (objects.empty()) return;
-  Restriction r{whole, std::vector<char>(whole.nodes.size(), 0),
+  Restriction r{whole, std::vector<std::uint32_t>(whole.nodes.size(), 0),
                 std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld)};
   std::size_t marked = 0;
   for (std::uint32_t o : objects) {
     const std::uint32_t id = wholeIdOf[o];
     r.localOf[id] = o;
-    // Mark the way up from the object's leaf, as far as a way already marked.
-    for (std::uint32_t n = whole.leafOf[id]; !r.kept[n]; n = whole.parent[n]) {
-      r.kept[n] = 1;
-      ++marked;
+    // Count the object on the way up from its leaf to the root.
+    for (std::uint32_t n = whole.leafOf[id];; n = whole.parent[n]) {
+      marked += r.keptBelow[n]++ == 0;
       if (n == 0) break;
     }
   }
@@ -99,28 +104,27 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::
   nodes_.reserve(marked);
   order_.reserve(objects.size());
   keep(r, 0);
+  nodes_.shrink_to_fit();
 }
 
-// Copies the kept part of the whole tree's node (kept[wholeNode] holds), depth first as build lays nodes out;
-// an inner node with one kept child becomes that child. Returns the copy's index.
+// Copies the kept part of the whole tree's node (keptBelow[wholeNode] > 0), depth first as build lays nodes
+// out; an inner node with one kept child becomes that child, and one holding at most kRestrictedLeafSize
+// kept objects becomes a leaf of them. Returns the copy's index.
 template <class Real>
 std::uint32_t BasicBvh<Real>::keep(const Restriction& r, std::uint32_t wholeNode) {
   const BvhShape::Node& w = r.whole.nodes[wholeNode];
-  if (w.count == 0) {
+  const bool inner = w.count == 0;
+  if (inner) {
     const std::uint32_t left = wholeNode + 1, right = w.first;
-    if (!r.kept[left]) return keep(r, right);
-    if (!r.kept[right]) return keep(r, left);
+    if (r.keptBelow[left] == 0) return keep(r, right);
+    if (r.keptBelow[right] == 0) return keep(r, left);
   }
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
-  if (w.count > 0) {
+  if (!inner || r.keptBelow[wholeNode] <= kRestrictedLeafSize) {
     Box bounds;
     const std::uint32_t first = std::uint32_t(order_.size());
-    for (std::uint32_t i = w.first; i < w.first + w.count; ++i)
-      if (const std::uint32_t local = r.localOf[r.whole.order[i]]; local != Restriction::kNotHeld) {
-        order_.push_back(local);
-        bounds.extend(boundsOf(scene_.objects[local], kBoxPaddingRelativeOf<Real>));
-      }
+    gatherKept(r, wholeNode, bounds);
     nodes_[index] = Node{bounds.template enclosingIn<Real>(), first, std::uint32_t(order_.size()) - first, 0};
     return index;
   }
@@ -130,6 +134,24 @@ std::uint32_t BasicBvh<Real>::keep(const Restriction& r, std::uint32_t wholeNode
   box.extend(nodes_[right].box);
   nodes_[index] = Node{box, right, 0, w.axis};
   return index;
+}
+
+// Appends the kept objects below the whole tree's node to order_, in the whole tree's order, with their
+// boxes into `bounds`.
+template <class Real>
+void BasicBvh<Real>::gatherKept(const Restriction& r, std::uint32_t wholeNode, Box& bounds) {
+  if (r.keptBelow[wholeNode] == 0) return;
+  const BvhShape::Node& w = r.whole.nodes[wholeNode];
+  if (w.count == 0) {
+    gatherKept(r, wholeNode + 1, bounds);
+    gatherKept(r, w.first, bounds);
+    return;
+  }
+  for (std::uint32_t i = w.first; i < w.first + w.count; ++i)
+    if (const std::uint32_t local = r.localOf[r.whole.order[i]]; local != Restriction::kNotHeld) {
+      order_.push_back(local);
+      bounds.extend(boundsOf(scene_.objects[local], kBoxPaddingRelativeOf<Real>));
+    }
 }
 
 namespace {

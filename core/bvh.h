@@ -92,6 +92,7 @@ class BasicBvh {
                       Bins& bins, std::vector<Node>& nodes, int spawnLevels);
   struct Restriction;
   std::uint32_t keep(const Restriction& r, std::uint32_t wholeNode);
+  void gatherKept(const Restriction& r, std::uint32_t wholeNode, Box& bounds);
 
   const Scene& scene_;
   const Whitted& shading_;

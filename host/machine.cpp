@@ -130,11 +130,12 @@ void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::
   std::vector<std::shared_ptr<const node::RegionDatabase>> databases(sets.size());
   parallelFor(int(sets.size()), [&](int d) {
     databases[std::size_t(d)] =
-        std::make_shared<const node::RegionDatabase>(node::regionDatabaseOf(scene, boxes, *sets[std::size_t(d)]));
+        std::make_shared<const node::RegionDatabase>(node::regionDatabaseOf(scene, *sets[std::size_t(d)]));
   });
   for (std::size_t p = 0; p < setups.size(); ++p) setups[p].database = databases[setOf[p]];
   parallelFor(int(setups.size()), [&](int p) {
     node::NodeSetup& setup = setups[std::size_t(p)];
+    setup.objectBoxes = node::eyeBoxesOf(boxes, setup.objects);
     node::toLocalIndices(*setup.database, cellListsOf(setup));
   });
 }

@@ -123,14 +123,12 @@ node::LightSources readLightSources(WireReader& in) {
 void writeDatabase(WireWriter& out, const node::RegionDatabase& database) {
   writeScene(out, database.scene);
   out.vector(database.globalIds);
-  out.vector(database.eyeBoxes);
 }
 
 std::shared_ptr<const node::RegionDatabase> readDatabase(WireReader& in) {
   auto database = std::make_shared<node::RegionDatabase>();
   database->scene = readScene(in);
   database->globalIds = in.vector<std::uint32_t>();
-  database->eyeBoxes = in.vector<node::EyeBox>();
   return database;
 }
 
@@ -151,6 +149,7 @@ void writeSetup(WireWriter& out, const node::NodeSetup& setup, const DatabaseTab
   out.value(setup.cellLevel);
   out.value(std::uint64_t(std::find(databases.begin(), databases.end(), setup.database.get()) - databases.begin()));
   out.vector(setup.objects);
+  out.vector(setup.objectBoxes);
   out.vector(setup.rearObjects);
   out.value(setup.lightRays);
   writeLightSources(out, setup.lightSources);
@@ -169,6 +168,9 @@ node::NodeSetup readSetup(WireReader& in,
   if (database >= databases.size()) throw std::runtime_error("a job names a region database it does not hold");
   setup.database = databases[database];
   setup.objects = in.vector<std::uint32_t>();
+  setup.objectBoxes = in.vector<node::EyeBox>();
+  if (setup.objectBoxes.size() != setup.objects.size())
+    throw std::runtime_error("a job gives a processor's objects without an eye box each");
   setup.rearObjects = in.vector<std::uint32_t>();
   setup.lightRays = in.value<node::LightRayMode>();
   setup.lightSources = readLightSources(in);

@@ -21,13 +21,14 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       area_(context.regions.areaOf(setup_.id)),
       structure_(chosenFor(setup_.cells, setup_.objects.size())),
       cells_(area_, context.lines(), structure_ == CellStructure::Bvh ? 0 : setup_.cellLevel,
-             structure_ == CellStructure::Paper, setup_.objects, setup_.database->eyeBoxes),
+             structure_ == CellStructure::Paper, setup_.objects, setup_.objectBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
       inbox_(scheduling::kInboxBatch),
       mailboxStamp_(scene_.objects.size(), 0),
       mailboxT_(scene_.objects.size(), 0.0),
       termination_(setup_.id) {
+  setup_.objectBoxes = {};  // the cells are cut
   stats_.id = setup_.id;
   stats_.area = area_;
   stats_.objects = cells_.objectCount();

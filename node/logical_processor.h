@@ -37,6 +37,7 @@ struct NodeSetup {
   int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
   std::shared_ptr<const RegionDatabase> database;  // the only objects this processor holds
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
+  std::vector<EyeBox> objectBoxes;         // the eye box of each of `objects`: the cells are cut from them
   std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
   // 3.7.2: with light cones or pyramids, the eye-frame box this region's light rays start in; the database
   // holds every object their light volumes meet, and such rays are traced where they start; light rays

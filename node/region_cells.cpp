@@ -23,26 +23,24 @@ std::vector<int> halvings(int lo, int hi, int level) {
 }  // namespace
 
 RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int level, bool depthCuts,
-                         const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& eyeBoxes) {
+                         const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& boxes) {
   sampleBounds_[0] = halvings(area.x0, area.x1, level);
   sampleBounds_[1] = halvings(area.y0, area.y1, level);
   for (int axis = 0; axis < 2; ++axis)
     for (int k : sampleBounds_[axis]) bounds_[axis].push_back(lines.at(axis, k));
   columnsX_ = int(bounds_[0].size()) - 1;
   const int rows = int(bounds_[1].size()) - 1;
-  std::uint32_t largest = 0;
-  for (std::uint32_t object : objects) largest = std::max(largest, object);
-  std::vector<char> held(objects.empty() ? 0 : largest + 1u, 0);
+  std::vector<char> held(objects.size(), 0);  // per entry of `objects`
   columns_.resize(std::size_t(columnsX_) * rows);
   for (int j = 0; j < rows; ++j) {
     for (int i = 0; i < columnsX_; ++i) {
       ColumnSlab slab{bounds_[0][i], bounds_[0][i + 1], bounds_[1][j], bounds_[1][j + 1], 0, core::kInfinity};
-      std::vector<std::uint32_t> inColumn;
+      std::vector<std::size_t> inColumn;  // entries of `objects`
       std::vector<double> splits;
-      for (std::uint32_t object : objects) {
-        const EyeBox& box = eyeBoxes[object];
+      for (std::size_t k = 0; k < objects.size(); ++k) {
+        const EyeBox& box = boxes[k];
         if (!mayTouch(box, slab)) continue;
-        inColumn.push_back(object);
+        inColumn.push_back(k);
         if (depthCuts && box.lo.z > 0) splits.push_back(box.lo.z);
         if (depthCuts && box.hi.z > 0) splits.push_back(box.hi.z);
       }
@@ -51,13 +49,13 @@ RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int l
       Column& column = columns_[std::size_t(j) * columnsX_ + i];
       column.depthSplits = splits;
       column.cellObjects.resize(splits.size() + 1);
-      for (std::size_t k = 0; k <= splits.size(); ++k) {
-        slab.zLo = k == 0 ? 0.0 : splits[k - 1];
-        slab.zHi = k == splits.size() ? core::kInfinity : splits[k];
-        for (std::uint32_t object : inColumn)
-          if (mayTouch(eyeBoxes[object], slab)) {
-            column.cellObjects[k].push_back(object);
-            held[object] = 1;
+      for (std::size_t cut = 0; cut <= splits.size(); ++cut) {
+        slab.zLo = cut == 0 ? 0.0 : splits[cut - 1];
+        slab.zHi = cut == splits.size() ? core::kInfinity : splits[cut];
+        for (std::size_t k : inColumn)
+          if (mayTouch(boxes[k], slab)) {
+            column.cellObjects[cut].push_back(objects[k]);
+            held[k] = 1;
           }
       }
       cellCount_ += column.cellObjects.size();

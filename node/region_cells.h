@@ -37,10 +37,11 @@ inline CellStructure chosenFor(CellStructure requested, std::size_t regionObject
 
 class RegionCells {
  public:
-  // objects: indices into the database with their eye boxes; only those touching the region are kept.
+  // objects: indices into the database, and the eye box of each (boxes[k] is objects[k]'s); only those
+  // touching the region are kept.
   // depthCuts: cut each column by its objects' depth faces (3.3); without, a column is one cell.
   RegionCells(const SampleRect& area, const ScreenLines& lines, int level, bool depthCuts,
-              const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& eyeBoxes);
+              const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& boxes);
 
   // Walks [t, tEnd) from the column containing the ray at t (or the given sample's column for eye rays),
   // calling visit(tEnter, tExit, objectIndices) for every non-empty cell interval, in t order, until visit

@@ -27,16 +27,11 @@ std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObj
   return held;
 }
 
-RegionDatabase regionDatabaseOf(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
-                                std::vector<std::uint32_t> held) {
+RegionDatabase regionDatabaseOf(const core::Scene& scene, std::vector<std::uint32_t> held) {
   RegionDatabase db;
   db.scene = withoutObjects(scene);
   db.scene.objects.reserve(held.size());
-  db.eyeBoxes.reserve(held.size());
-  for (std::uint32_t g : held) {
-    db.scene.objects.push_back(scene.objects[g]);
-    db.eyeBoxes.push_back(eyeBoxes[g]);
-  }
+  for (std::uint32_t g : held) db.scene.objects.push_back(scene.objects[g]);
   db.globalIds = std::move(held);
   return db;
 }
@@ -50,11 +45,18 @@ void toLocalIndices(const RegionDatabase& database, ObjectLists lists) {
     for (std::uint32_t& o : *list) o = localOf[o];
 }
 
-RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
-                                    ObjectLists lists) {
-  RegionDatabase db = regionDatabaseOf(scene, eyeBoxes, heldObjectsOf(lists, scene.objects.size()));
+RegionDatabase gatherRegionDatabase(const core::Scene& scene, ObjectLists lists) {
+  RegionDatabase db = regionDatabaseOf(scene, heldObjectsOf(lists, scene.objects.size()));
   toLocalIndices(db, lists);
   return db;
+}
+
+std::vector<EyeBox> eyeBoxesOf(const std::vector<EyeBox>& eyeBoxes,
+                               const std::vector<std::uint32_t>& objects) {
+  std::vector<EyeBox> out;
+  out.reserve(objects.size());
+  for (std::uint32_t o : objects) out.push_back(eyeBoxes[o]);
+  return out;
 }
 
 }  // namespace raycube::node

@@ -16,7 +16,6 @@ namespace raycube::node {
 struct RegionDatabase {
   core::Scene scene;                       // the held objects, in ascending global index order
   std::vector<std::uint32_t> globalIds;    // per local object
-  std::vector<EyeBox> eyeBoxes;            // per local object
   std::size_t size() const { return globalIds.size(); }
 };
 
@@ -25,15 +24,18 @@ using ObjectLists = std::span<std::vector<std::uint32_t>* const>;
 // Every object named in `lists` (global indices below sceneObjects), ascending and once each: what a
 // processor holds.
 std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObjects);
-// The database of the objects `held` (ascending global indices into `scene`, whose eye boxes are `eyeBoxes`).
-RegionDatabase regionDatabaseOf(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
-                                std::vector<std::uint32_t> held);
+// The database of the objects `held` (ascending global indices into `scene`).
+RegionDatabase regionDatabaseOf(const core::Scene& scene, std::vector<std::uint32_t> held);
 // Rewrites each list, of global indices all held by `database`, into its local indices.
 void toLocalIndices(const RegionDatabase& database, ObjectLists lists);
 
-// The database holding every object named in `lists` (global indices into `scene`, whose eye boxes are
-// `eyeBoxes`); rewrites each list in place into local indices of that database.
-RegionDatabase gatherRegionDatabase(const core::Scene& scene, const std::vector<EyeBox>& eyeBoxes,
-                                    ObjectLists lists);
+// The database holding every object named in `lists` (global indices into `scene`); rewrites each list in
+// place into local indices of that database.
+RegionDatabase gatherRegionDatabase(const core::Scene& scene, ObjectLists lists);
+
+// The eye boxes of `objects` (indices into `eyeBoxes`), in their order: what a processor cuts its cells from
+// (node/region_cells.h), given with its region's objects rather than held per copy in the database.
+std::vector<EyeBox> eyeBoxesOf(const std::vector<EyeBox>& eyeBoxes,
+                               const std::vector<std::uint32_t>& objects);
 
 }  // namespace raycube::node

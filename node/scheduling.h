@@ -39,12 +39,13 @@ inline constexpr auto kHostBatchingPause = std::chrono::microseconds(500);
 // Contributions per block a node ships to the host (3.4), and blocks the processors of one host may have
 // in flight before they wait: enough for the host's batching pause at the machine's peak rate, which the
 // processors share. The peak is about 5 million contributions a second on this machine's 2 cores, 2,500 per
-// pause, 10 blocks: 128 blocks (8 each at 4 x 4, the minimum of 4 at 8 x 8) leave room for ten times that.
-// Each block is 8 KB the queue touches as it cycles: 512 blocks cost jacks 4 at 4 x 4 a quarter of its peak
-// memory (35.7 -> 27.5 MB with this and the BVH restriction's reserve), for no speed.
+// pause, 10 blocks: 128 blocks (8 each at 4 x 4, 2 at 8 x 8) leave room for ten times that. Each block is
+// 8 KB the queue touches as it cycles: 512 blocks cost jacks 4 at 4 x 4 a quarter of its peak memory (35.7 ->
+// 27.5 MB with this and the BVH restriction's reserve), for no speed; a minimum of 4 per processor another
+// 1 MB at 8 x 8 (mount 6 no slower with 2).
 inline constexpr std::size_t kContributionBlock = 256;
 inline constexpr std::size_t kContributionBlocksPerHost = 128;
-inline constexpr std::size_t kMinContributionBlocks = 4;
+inline constexpr std::size_t kMinContributionBlocks = 2;
 inline constexpr std::size_t contributionBlocksPerProcessor(std::size_t processors) {
   return processors == 0 ? kMinContributionBlocks
                          : std::max(kMinContributionBlocks, kContributionBlocksPerHost / processors);

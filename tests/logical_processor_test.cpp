@@ -116,7 +116,8 @@ class LogicalProcessorTest : public ::testing::Test {
       if (reachesBehindEye(boxes[o])) s.rearObjects.push_back(o);
     }
     std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects};
-    s.database = std::make_shared<const RegionDatabase>(gatherRegionDatabase(scene_, boxes, lists));
+    s.objectBoxes = eyeBoxesOf(boxes, s.objects);
+    s.database = std::make_shared<const RegionDatabase>(gatherRegionDatabase(scene_, lists));
     return s;
   }
 

@@ -46,7 +46,8 @@ node::NodeSetup setupOf(const core::Scene& scene, const node::MachineContext& co
   s.lightObjects = 3;
   s.extraLightObjects = 3;
   std::vector<std::uint32_t>* lists[] = {&s.objects, &s.rearObjects, &lightObjects};
-  s.database = std::make_shared<const node::RegionDatabase>(node::gatherRegionDatabase(scene, boxes, lists));
+  s.objectBoxes = node::eyeBoxesOf(boxes, s.objects);
+  s.database = std::make_shared<const node::RegionDatabase>(node::gatherRegionDatabase(scene, lists));
   return s;
 }
 
@@ -121,9 +122,9 @@ TEST(MachineWireTest, JobComesBackAsItLeft) {
   EXPECT_EQ(s.lightObjects, setup.lightObjects);
   EXPECT_EQ(s.extraLightObjects, setup.extraLightObjects);
   EXPECT_EQ(s.database->globalIds, setup.database->globalIds);
-  ASSERT_EQ(s.database->eyeBoxes.size(), setup.database->eyeBoxes.size());
-  for (std::size_t k = 0; k < s.database->eyeBoxes.size(); ++k)
-    EXPECT_TRUE(sameBytes(s.database->eyeBoxes[k], setup.database->eyeBoxes[k]));
+  ASSERT_EQ(s.objectBoxes.size(), setup.objectBoxes.size());
+  for (std::size_t k = 0; k < s.objectBoxes.size(); ++k)
+    EXPECT_TRUE(sameBytes(s.objectBoxes[k], setup.objectBoxes[k]));
   const core::Scene& held = s.database->scene;
   EXPECT_EQ(held.name, scene.name);
   // Field by field: the camera has padding, which no copy need keep.

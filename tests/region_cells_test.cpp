@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -142,6 +143,51 @@ TEST(RegionCells, WalkCoversTheIntervalContiguously) {
   }
   EXPECT_GT(exited, 100);
   EXPECT_GT(finished, 10);
+}
+
+// A region's objects come as a list with an eye box per entry: cells cut from the list in another order,
+// with its boxes in that order, hold the same objects in every cell the walk visits.
+TEST(RegionCells, CellsFollowTheirListsBoxesWhateverItsOrder) {
+  Fixture f;
+  const SampleRect area{36, 60, 26, 46};
+  std::vector<std::uint32_t> reversed(f.all.rbegin(), f.all.rend());
+  std::vector<EyeBox> reversedBoxes(f.boxes.rbegin(), f.boxes.rend());
+  const RegionCells cells(area, f.lines, 2, true, f.all, f.boxes);
+  const RegionCells reversedCells(area, f.lines, 2, true, reversed, reversedBoxes);
+  EXPECT_EQ(reversedCells.cellCount(), cells.cellCount());
+  EXPECT_EQ(reversedCells.objectCount(), cells.objectCount());
+  EXPECT_GT(cells.objectCount(), 10u);
+  EXPECT_LT(cells.objectCount(), f.all.size());
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int compared = 0;
+  for (int n = 0; n < 500; ++n) {
+    core::Ray ray;
+    ray.origin = core::Vec3(u(random) * 0.5, u(random) * 0.5, u(random) * 0.5 + 0.2);
+    ray.direction = glm::normalize(core::Vec3(u(random), u(random), u(random)));
+    const EyeFrameRay er = EyeFrameRay::of(ray, f.view);
+    if (!er.inFront(0)) continue;
+    auto cellsAlong = [&](const RegionCells& c) {
+      std::vector<std::vector<std::uint32_t>> out;
+      int i, j;
+      c.locate(er, 0, i, j);
+      RegionExit exit;
+      std::uint64_t steps = 0;
+      c.walk(
+          er, 0, er.partEnd(0), i, j,
+          [&](double, double, const std::vector<std::uint32_t>& objects) {
+            out.push_back(objects);
+            std::sort(out.back().begin(), out.back().end());
+            return true;
+          },
+          exit, steps);
+      return out;
+    };
+    const auto along = cellsAlong(cells);
+    EXPECT_EQ(cellsAlong(reversedCells), along);
+    compared += int(along.size());
+  }
+  EXPECT_GT(compared, 100);
 }
 
 // Conservative assignment: every object a ray hits in front of the eye is listed by the cell owning the hit.

@@ -43,15 +43,13 @@ TEST_F(RegionDatabaseTest, ListsNameTheSameObjectsInLocalIndices) {
     std::vector<std::uint32_t> region = named;
     std::vector<std::uint32_t> rear = named.empty() ? std::vector<std::uint32_t>{} : std::vector{named[0]};
     std::vector<std::uint32_t>* lists[] = {&region, &rear};
-    const RegionDatabase db = gatherRegionDatabase(scene_, boxes_, lists);
+    const RegionDatabase db = gatherRegionDatabase(scene_, lists);
     ASSERT_EQ(db.scene.objects.size(), named.size());
-    ASSERT_EQ(db.eyeBoxes.size(), named.size());
     for (std::size_t i = 0; i < named.size(); ++i) {
       const std::uint32_t global = db.globalIds[region[i]];
       EXPECT_EQ(global, named[i]);
       EXPECT_EQ(std::get<core::Sphere>(db.scene.objects[region[i]].shape).center,
                 std::get<core::Sphere>(scene_.objects[global].shape).center);
-      EXPECT_EQ(db.eyeBoxes[region[i]].lo, boxes_[global].lo);
     }
     if (!named.empty()) {
       EXPECT_EQ(db.globalIds[rear[0]], named[0]);
@@ -59,10 +57,21 @@ TEST_F(RegionDatabaseTest, ListsNameTheSameObjectsInLocalIndices) {
   }
 }
 
+TEST_F(RegionDatabaseTest, TheRegionsObjectsComeWithTheirEyeBoxesInTheirOrder) {
+  const std::vector<std::uint32_t> region{5, 2, 3};
+  const std::vector<EyeBox> boxes = eyeBoxesOf(boxes_, region);
+  ASSERT_EQ(boxes.size(), region.size());
+  for (std::size_t k = 0; k < region.size(); ++k) {
+    EXPECT_EQ(boxes[k].lo, boxes_[region[k]].lo);
+    EXPECT_EQ(boxes[k].hi, boxes_[region[k]].hi);
+  }
+  EXPECT_TRUE(eyeBoxesOf(boxes_, {}).empty());
+}
+
 TEST_F(RegionDatabaseTest, ProcessorsHoldingTheSameDatabaseShareOneTree) {
   std::vector<std::uint32_t> held{0, 2, 3};
-  auto database = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, boxes_, held));
-  auto equal = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, boxes_, held));
+  auto database = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, held));
+  auto equal = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, held));
   const auto tree = sharedBvhOf<double>(database, core::ShadingOptions{});
   EXPECT_EQ(sharedBvhOf<double>(database, core::ShadingOptions{}), tree);
   EXPECT_EQ(tree->database, database);
