@@ -78,7 +78,9 @@ template <class Real>
 struct BasicBvh<Real>::Restriction {
   static constexpr std::uint32_t kNotHeld = std::numeric_limits<std::uint32_t>::max();
   const BvhShape& whole;
-  std::vector<std::uint32_t> keptBelow;  // per whole node
+  std::vector<std::uint8_t> keptBelow;   // per whole node, saturating at kSaturated
+  static constexpr std::uint8_t kSaturated = 255;
+  static_assert(kRestrictedLeafSize < kSaturated);
   std::vector<std::uint32_t> localOf;    // per whole object
 };
 
@@ -87,24 +89,26 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::
                          const BvhShape& whole, std::span<const std::uint32_t> wholeIdOf)
     : scene_(scene), shading_(shading) {
   if (objects.empty()) return;
-  Restriction r{whole, std::vector<std::uint32_t>(whole.nodes.size(), 0),
+  // A byte per whole node, as much temporary memory as a flag: 64 processors restrict at once.
+  Restriction r{whole, std::vector<std::uint8_t>(whole.nodes.size(), 0),
                 std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld)};
   std::size_t marked = 0;
   for (std::uint32_t o : objects) {
     const std::uint32_t id = wholeIdOf[o];
     r.localOf[id] = o;
-    // Count the object on the way up from its leaf to the root.
-    for (std::uint32_t n = whole.leafOf[id];; n = whole.parent[n]) {
+    // Count the object on the way up from its leaf, as far as a count already saturated.
+    for (std::uint32_t n = whole.leafOf[id]; r.keptBelow[n] < Restriction::kSaturated; n = whole.parent[n]) {
       marked += r.keptBelow[n]++ == 0;
       if (n == 0) break;
     }
   }
   // The copy has at most the marked nodes: reserved, not doubled as it grows (64 processors hold 9 MB of
-  // such trees at jacks 4's 8 x 8, a quarter of it capacity never used).
+  // such trees at jacks 4's 8 x 8, a quarter of it capacity never used). Not shrunk to fit: the capacity
+  // past the last node is never written, so costs no memory, where a copy would leave the tree's pages
+  // twice in the processor's allocator (sombrero 3 at 8 x 8: +7 MB peak).
   nodes_.reserve(marked);
   order_.reserve(objects.size());
   keep(r, 0);
-  nodes_.shrink_to_fit();
 }
 
 // Copies the kept part of the whole tree's node (keptBelow[wholeNode] > 0), depth first as build lays nodes

@@ -161,7 +161,6 @@ class NffParser {
     if (viewLine_ == 0) {
       failAtEnd("expected a 'v' block (from, at, up, angle, hither, resolution) before the first object");
     }
-    scene.objects.shrink_to_fit();  // the scene lives through the render: not up to twice its objects
     return scene;
   }
 
