@@ -49,10 +49,10 @@ struct NodeSetup {
   // What the host found for the report: the light volumes' objects summed over the lights, and how many of
   // those are not among the region's objects.
   std::size_t lightObjects = 0, extraLightObjects = 0;
-  // The shape of the host's BVH over the whole scene, where the host shares this address space: the BVH
-  // over the processor's database keeps it, restricted to what it holds, instead of being built anew
-  // (node/database_bvh.h). None across address spaces (an MPI rank builds its own), nor when emulating,
-  // whose costs count box tests.
+  // The shape of the host's BVH over the whole scene, where the host shares this address space: the BVHs
+  // over the processor's database and its region keep it, restricted to what they hold, instead of being
+  // built anew (node/database_bvh.h). None across address spaces (an MPI rank builds its own), nor when
+  // emulating, whose costs count box tests.
   std::shared_ptr<const core::BvhShape> sceneShape;
 };
 
