@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <thread>
 
 #include "core/precision.h"
@@ -11,11 +12,6 @@ namespace raycube::core {
 
 namespace {
 constexpr std::uint32_t kLeafSize = 1;
-// A restricted tree's subtree holding this few of its objects becomes one leaf: the objects a region
-// holds are scattered over the whole tree, so a leaf per object cost two nodes per object (jacks 4 at 8 x 8:
-// 7.5 MB of trees over 55,000 held copies; 2 saves 3 MB for the same tests, 4 another 2 MB for 15% more
-// object tests on mount 6 and 45% on sombrero 3, and looked slower on balls 4).
-constexpr std::uint32_t kRestrictedLeafSize = 2;
 // A build on every core spawns a thread for the right subtree of the first two splits whose smaller side
 // holds at least kSpawnObjects / 2 objects (four subtrees: an uneven split still leaves two cores busy; a
 // thread costs tens of microseconds, two thousand objects' build about a millisecond).
@@ -77,21 +73,24 @@ BvhShape BasicBvh<Real>::shape() const {
 template <class Real>
 struct BasicBvh<Real>::Restriction {
   static constexpr std::uint32_t kNotHeld = std::numeric_limits<std::uint32_t>::max();
-  const BvhShape& whole;
-  std::vector<std::uint8_t> keptBelow;   // per whole node, saturating at kSaturated
   static constexpr std::uint8_t kSaturated = 255;
-  static_assert(kRestrictedLeafSize < kSaturated);
-  std::vector<std::uint32_t> localOf;    // per whole object
+  const BvhShape& whole;
+  std::vector<std::uint8_t> keptBelow;  // per whole node, saturating at kSaturated
+  std::vector<std::uint32_t> localOf;   // per whole object
+  std::uint32_t largestLeaf;
 };
 
 template <class Real>
-BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::vector<std::uint32_t>& objects,
-                         const BvhShape& whole, std::span<const std::uint32_t> wholeIdOf)
+BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading,
+                         const std::vector<std::uint32_t>& objects, const BvhShape& whole,
+                         std::span<const std::uint32_t> wholeIdOf, std::uint32_t largestLeaf)
     : scene_(scene), shading_(shading) {
   if (objects.empty()) return;
+  if (largestLeaf == 0 || largestLeaf >= Restriction::kSaturated)
+    throw std::invalid_argument("a restricted BVH's leaves hold 1 to 254 objects");
   // A byte per whole node, as much temporary memory as a flag: 64 processors restrict at once.
   Restriction r{whole, std::vector<std::uint8_t>(whole.nodes.size(), 0),
-                std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld)};
+                std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld), largestLeaf};
   std::size_t marked = 0;
   for (std::uint32_t o : objects) {
     const std::uint32_t id = wholeIdOf[o];
@@ -112,8 +111,8 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, const std::
 }
 
 // Copies the kept part of the whole tree's node (keptBelow[wholeNode] > 0), depth first as build lays nodes
-// out; an inner node with one kept child becomes that child, and one holding at most kRestrictedLeafSize
-// kept objects becomes a leaf of them. Returns the copy's index.
+// out; an inner node with one kept child becomes that child, and one holding at most r.largestLeaf kept
+// objects becomes a leaf of them. Returns the copy's index.
 template <class Real>
 std::uint32_t BasicBvh<Real>::keep(const Restriction& r, std::uint32_t wholeNode) {
   const BvhShape::Node& w = r.whole.nodes[wholeNode];
@@ -125,7 +124,7 @@ std::uint32_t BasicBvh<Real>::keep(const Restriction& r, std::uint32_t wholeNode
   }
   const std::uint32_t index = std::uint32_t(nodes_.size());
   nodes_.push_back(Node{});
-  if (!inner || r.keptBelow[wholeNode] <= kRestrictedLeafSize) {
+  if (!inner || r.keptBelow[wholeNode] <= r.largestLeaf) {
     Box bounds;
     const std::uint32_t first = std::uint32_t(order_.size());
     gatherKept(r, wholeNode, bounds);

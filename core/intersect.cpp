@@ -129,9 +129,11 @@ ConeFrame<Real> frameOf(const Cone& c) {
 template <class Real>
 Real hitCone(const Cone& cone, const BasicRay<Real>& ray, Real tMax) {
   const ConeFrame<Real> f = frameOf<Real>(cone);
-  const Real tShift = glm::dot(f.base + Real(0.5) * f.height * f.axis - ray.origin, ray.direction);
-  const V<Real> ob = ray.origin + tShift * ray.direction - f.base;
-  const Real so = glm::dot(ob, f.axis), sd = glm::dot(ray.direction, f.axis);
+  const V<Real> fromBase = ray.origin - f.base;
+  const Real sd = glm::dot(ray.direction, f.axis);
+  const Real tShift = Real(0.5) * f.height * sd - glm::dot(fromBase, ray.direction);
+  const V<Real> ob = fromBase + tShift * ray.direction;
+  const Real so = glm::dot(ob, f.axis);
   const V<Real> wo = ob - so * f.axis, wd = ray.direction - sd * f.axis;
   const Real ro = f.baseRadius + f.slope * so, rd = f.slope * sd;
   const Real a = glm::dot(wd, wd) - rd * rd;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <stdexcept>
 
 #include "core/brute_force.h"
 #include "core/spd_scenes.h"
@@ -90,15 +91,16 @@ void checkRestrictions() {
     for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
     for (std::uint32_t i = 0; i < all.size(); i += 2) half.push_back(i);
     for (const auto* objects : {&all, &half}) {
-      const BasicBvh<Real> kept(database, shading, *objects, shape, held);
       const BasicBvh<Real> built(database, shading, *objects);
-      EXPECT_LE(kept.nodeCount(), 2 * objects->size());  // single children lifted: a full binary tree
-      // Scattered over the whole tree, a few objects in one subtree share a leaf rather than a node each.
-      // (without, a full binary tree over one object per leaf: 2n - 1 nodes).
-      if (share < 0.1) {
-        EXPECT_LT(double(kept.nodeCount()), 1.5 * double(objects->size()));
-      }
+      const BasicBvh<Real> kept(database, shading, *objects, shape, held);
+      EXPECT_LE(kept.nodeCount(), 2 * objects->size() - 1);  // single children lifted: a full binary tree
       expectSameAnswers(database, kept, built, *objects);
+      // Scattered over the whole tree, a few objects in one branch share a leaf rather than a node each.
+      const BasicBvh<Real> pairs(database, shading, *objects, shape, held, 2);
+      if (share < 0.1) {
+        EXPECT_LT(double(pairs.nodeCount()), 1.5 * double(objects->size()));
+      }
+      expectSameAnswers(database, pairs, built, *objects);
     }
   }
 }
@@ -145,6 +147,16 @@ TEST(Bvh, KeptOverNothingIsEmpty) {
   EXPECT_EQ(kept.nodeCount(), 0u);
   TraceCounters counters;
   EXPECT_FALSE(kept.closestHit(raysThrough(whole, 1, 3).front(), counters).found());
+}
+
+TEST(Bvh, KeptLeavesHoldAtLeastOneObjectAndFewerThanACountCanSay) {
+  const Scene whole = makeSpdScene("jacks", 1);
+  const Whitted shading(whole, ShadingOptions{});
+  const BvhShape shape = Bvh(whole, shading).shape();
+  const std::vector<std::uint32_t> ids = everyObjectOf(whole);
+  EXPECT_THROW(Bvh(whole, shading, ids, shape, ids, 0), std::invalid_argument);
+  EXPECT_THROW(Bvh(whole, shading, ids, shape, ids, 255), std::invalid_argument);
+  EXPECT_EQ(Bvh(whole, shading, ids, shape, ids, 254).nodeCount(), 1u);  // jacks 1: one leaf of all
 }
 
 }  // namespace
