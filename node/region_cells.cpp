@@ -1,6 +1,7 @@
 #include "node/region_cells.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace raycube::node {
 namespace {
@@ -24,6 +25,8 @@ std::vector<int> halvings(int lo, int hi, int level) {
 
 RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int level, bool depthCuts,
                          const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& boxes) {
+  if (boxes.size() != objects.size())
+    throw std::invalid_argument("a region's cells need one eye box per object of the region");
   sampleBounds_[0] = halvings(area.x0, area.x1, level);
   sampleBounds_[1] = halvings(area.y0, area.y1, level);
   for (int axis = 0; axis < 2; ++axis)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "core/balls.h"
 #include "core/brute_force.h"
@@ -188,6 +189,12 @@ TEST(RegionCells, CellsFollowTheirListsBoxesWhateverItsOrder) {
     compared += int(along.size());
   }
   EXPECT_GT(compared, 100);
+}
+
+TEST(RegionCells, RefuseObjectsWithoutAnEyeBoxEach) {
+  Fixture f;
+  std::vector<EyeBox> fewer(f.boxes.begin(), f.boxes.end() - 1);
+  EXPECT_THROW(RegionCells(SampleRect{0, 64, 0, 48}, f.lines, 1, true, f.all, fewer), std::invalid_argument);
 }
 
 // Conservative assignment: every object a ray hits in front of the eye is listed by the cell owning the hit.
