@@ -29,6 +29,16 @@ struct Fixture {
   }
 };
 
+// A ray from near the middle of balls 2 (within half a unit across, from 0.3 behind to 0.7 before its
+// centre) in a random direction.
+core::Ray rayNearTheMiddle(std::mt19937& random) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  core::Ray ray;
+  ray.origin = core::Vec3(u(random) * 0.5, u(random) * 0.5, u(random) * 0.5 + 0.2);
+  ray.direction = glm::normalize(core::Vec3(u(random), u(random), u(random)));
+  return ray;
+}
+
 TEST(ScreenLines, OuterBoundariesAreAtInfinityAndInnerOnesIncrease) {
   Fixture f;
   EXPECT_EQ(f.lines.at(0, 0), -core::kInfinity);
@@ -110,13 +120,9 @@ TEST(RegionCells, WalkCoversTheIntervalContiguously) {
   const RegionCells cells(area, f.lines, 2, true, f.all, f.boxes);
   EXPECT_GT(cells.cellCount(), 16u);
   std::mt19937 random(7);
-  std::uniform_real_distribution<double> u(-1, 1);
   int exited = 0, finished = 0;
   for (int n = 0; n < 2000; ++n) {
-    core::Ray ray;
-    ray.origin = core::Vec3(u(random) * 0.5, u(random) * 0.5, u(random) * 0.5 + 0.2);
-    ray.direction = glm::normalize(core::Vec3(u(random), u(random), u(random)));
-    const EyeFrameRay er = EyeFrameRay::of(ray, f.view);
+    const EyeFrameRay er = EyeFrameRay::of(rayNearTheMiddle(random), f.view);
     if (!er.inFront(0)) continue;
     int i, j;
     cells.locate(er, 0, i, j);
@@ -160,13 +166,9 @@ TEST(RegionCells, CellsFollowTheirListsBoxesWhateverItsOrder) {
   EXPECT_GT(cells.objectCount(), 10u);
   EXPECT_LT(cells.objectCount(), f.all.size());
   std::mt19937 random(5);
-  std::uniform_real_distribution<double> u(-1, 1);
   int compared = 0;
   for (int n = 0; n < 500; ++n) {
-    core::Ray ray;
-    ray.origin = core::Vec3(u(random) * 0.5, u(random) * 0.5, u(random) * 0.5 + 0.2);
-    ray.direction = glm::normalize(core::Vec3(u(random), u(random), u(random)));
-    const EyeFrameRay er = EyeFrameRay::of(ray, f.view);
+    const EyeFrameRay er = EyeFrameRay::of(rayNearTheMiddle(random), f.view);
     if (!er.inFront(0)) continue;
     auto cellsAlong = [&](const RegionCells& c) {
       std::vector<std::vector<std::uint32_t>> out;
