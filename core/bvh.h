@@ -102,6 +102,16 @@ class BasicBvh {
 };
 using Bvh = BasicBvh<double>;
 
+// A BVH over `objects` of `scene`: kept from `whole` where it is given (the restricting constructor, its
+// branches of up to largestLeaf objects made leaves), built anew where it is not.
+template <class Real>
+BasicBvh<Real> bvhOver(const Scene& scene, const Whitted& shading, const std::vector<std::uint32_t>& objects,
+                       const BvhShape* whole, std::span<const std::uint32_t> wholeIdOf,
+                       std::uint32_t largestLeaf = 1) {
+  if (whole == nullptr) return BasicBvh<Real>(scene, shading, objects);
+  return BasicBvh<Real>(scene, shading, objects, *whole, wholeIdOf, largestLeaf);
+}
+
 template <class Real>
 template <class Visit>
 void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real& tLimit, TraceCounters& counters,

@@ -24,9 +24,8 @@ struct DatabaseBvh {
               const core::BvhShape* sceneShape)
       : database(std::move(held)),
         shading(database->scene, options),
-        bvh(sceneShape ? core::BasicBvh<Real>(database->scene, shading, core::everyObjectOf(database->scene),
-                                              *sceneShape, database->globalIds, kLargestHeldLeaf)
-                       : core::BasicBvh<Real>(database->scene, shading)) {}
+        bvh(core::bvhOver<Real>(database->scene, shading, core::everyObjectOf(database->scene), sceneShape,
+                                database->globalIds, kLargestHeldLeaf)) {}
   DatabaseBvh(const DatabaseBvh&) = delete;  // bvh refers to database and shading
   DatabaseBvh& operator=(const DatabaseBvh&) = delete;
 

@@ -9,19 +9,6 @@
 #include "node/scheduling.h"
 
 namespace raycube::node {
-namespace {
-
-// A BVH over the region's objects (local indices into `scene`, the processor's database).
-template <class Real>
-std::unique_ptr<const core::BasicBvh<Real>> regionBvhOf(const core::Scene& scene,
-                                                        const core::Whitted& shading,
-                                                        const NodeSetup& setup) {
-  if (!setup.sceneShape) return std::make_unique<const core::BasicBvh<Real>>(scene, shading, setup.objects);
-  return std::make_unique<const core::BasicBvh<Real>>(scene, shading, setup.objects, *setup.sceneShape,
-                                                      setup.database->globalIds);
-}
-
-}  // namespace
 
 template <class Real>
 LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetup setup,
@@ -53,7 +40,9 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   // tree), with leaves of one object as a build makes them: a tenth of a build's time (sombrero 3 at 4 x 4:
   // preprocessing 55 -> 43 ms) for a few percent more box tests; whole-process CPU against building anew,
   // paired 12 rounds: lattice 12 1.014, sombrero 3 0.988. Leaves of two cost lattice 12's cylinders 2.6%.
-  if (stats_.bvh) regionBvh_ = regionBvhOf<Real>(scene_, shading_, setup_);
+  if (stats_.bvh)
+    regionBvh_ = std::make_unique<const core::BasicBvh<Real>>(core::bvhOver<Real>(
+        scene_, shading_, setup_.objects, setup_.sceneShape.get(), setup_.database->globalIds));
   if (setup_.lightRays != LightRayMode::Messages)
     databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading, setup_.sceneShape.get());
   stats_.lightObjects = setup_.lightObjects;
