@@ -93,7 +93,7 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading,
                 std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld), largestLeaf};
   std::size_t marked = 0;
   for (std::uint32_t o : objects) {
-    const std::uint32_t id = wholeIdOf[o];
+    const std::uint32_t id = wholeIdOf.empty() ? o : wholeIdOf[o];
     r.localOf[id] = o;
     // Count the object on the way up from its leaf, as far as a count already saturated.
     for (std::uint32_t n = whole.leafOf[id]; r.keptBelow[n] < Restriction::kSaturated; n = whole.parent[n]) {

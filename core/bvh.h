@@ -41,10 +41,11 @@ class BasicBvh {
   BasicBvh(const Scene& scene, const Whitted& shading, std::vector<std::uint32_t> objects,
            BuildOn on = BuildOn::OneCore);
   // The same, shaped as `whole` (a BVH over a larger scene in which this scene's object i is object
-  // wholeIdOf[i]) with the branches holding none of `objects` cut off and single children lifted: a few
-  // nanoseconds per node kept, where a build bins every object at every level. A branch holding at most
-  // largestLeaf (1-254) of the objects becomes one leaf: objects scattered over the whole tree otherwise
-  // cost two nodes each. Its boxes are this tree's own, so its answers are those of any BVH over them.
+  // wholeIdOf[i]; with wholeIdOf empty, `whole` is over this very scene) with the branches holding none of
+  // `objects` cut off and single children lifted: a few nanoseconds per node kept, where a build bins every
+  // object at every level. A branch holding at most largestLeaf (1-254) of the objects becomes one leaf:
+  // objects scattered over the whole tree otherwise cost two nodes each. Its boxes are this tree's own, so
+  // its answers are those of any BVH over them.
   BasicBvh(const Scene& scene, const Whitted& shading, const std::vector<std::uint32_t>& objects,
            const BvhShape& whole, std::span<const std::uint32_t> wholeIdOf, std::uint32_t largestLeaf = 1);
 

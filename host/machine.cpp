@@ -103,20 +103,26 @@ void countLightObjects(const std::vector<std::vector<std::uint32_t>>& lightObjec
   }
 }
 
-// A processor needing most of the scene holds all of it, the copy every such processor shares: an object
-// held without being needed costs its BVH box tests, never a hit (it lies outside the region and off every
-// light ray starting there), and one copy replaces many nearly equal ones (gears 4 at 8x8: 64 processors
-// need 7,396 to 9,345 of its 9,345 objects). Not when emulating, whose costs count the box tests.
+// A processor needing most of the scene holds all of it, the database and tree every such processor shares:
+// an object held without being needed costs its BVH box tests, never a hit (it lies outside the region and
+// off every light ray starting there), and one database replaces many nearly equal ones (gears 4 at 8x8: 64
+// processors need 7,396 to 9,345 of its 9,345 objects). Not when emulating, whose costs count the box tests.
 bool holdsWholeScene(const std::vector<std::uint32_t>& held, const core::Scene& scene,
                      const MachineSettings& machine) {
   return !machine.emulate && 2 * held.size() > scene.objects.size();
 }
 
-// Each processor's copy of the objects its lists name, the lists rewritten into its local indices; the
-// processors holding the same objects share one copy (the ground polygon's light volumes can make that all
-// of them).
+// Whether the processors run in the host's address space and read its scene in place (RegionDatabase): not
+// on MPI ranks, nor when emulating, whose nodes hold copies as the iPSC's did.
+bool readsSceneInPlace(const MachineSettings& machine) {
+  return !machine.emulate && !machine.mpi;
+}
+
+// Each processor's database of the objects its lists name, the lists rewritten into its indices; the
+// processors holding the same objects share one database (the ground polygon's light volumes can make that
+// all of them).
 void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::vector<std::uint32_t>>& held,
-                   const core::Scene& scene, const std::vector<node::EyeBox>& boxes) {
+                   const core::Scene& scene, const std::vector<node::EyeBox>& boxes, bool inPlace) {
   // The distinct sets in the order processors first name them, each copied once, on all cores.
   auto bySet = [](const std::vector<std::uint32_t>* a, const std::vector<std::uint32_t>* b) { return *a < *b; };
   std::map<const std::vector<std::uint32_t>*, std::size_t, decltype(bySet)> distinct(bySet);
@@ -129,8 +135,9 @@ void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::
   }
   std::vector<std::shared_ptr<const node::RegionDatabase>> databases(sets.size());
   parallelFor(int(sets.size()), [&](int d) {
-    databases[std::size_t(d)] =
-        std::make_shared<const node::RegionDatabase>(node::regionDatabaseOf(scene, *sets[std::size_t(d)]));
+    const std::vector<std::uint32_t>& objects = *sets[std::size_t(d)];
+    databases[std::size_t(d)] = std::make_shared<const node::RegionDatabase>(
+        inPlace ? node::regionDatabaseIn(scene, objects) : node::regionDatabaseOf(scene, objects));
   });
   for (std::size_t p = 0; p < setups.size(); ++p) setups[p].database = databases[setOf[p]];
   parallelFor(int(setups.size()), [&](int p) {
@@ -218,7 +225,7 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const c
     if (holdsWholeScene(heldBy[std::size_t(p)], scene, machine)) heldBy[std::size_t(p)] = everyObject;
     setups[std::size_t(p)] = std::move(setup);
   });
-  giveDatabases(setups, heldBy, scene, boxes);
+  giveDatabases(setups, heldBy, scene, boxes, readsSceneInPlace(machine));
   return setups;
 }
 

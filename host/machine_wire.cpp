@@ -121,6 +121,9 @@ node::LightSources readLightSources(WireReader& in) {
 }
 
 void writeDatabase(WireWriter& out, const node::RegionDatabase& database) {
+  // Its indices name the host's scene, which the other address space does not have.
+  if (database.inPlace)
+    throw std::logic_error("a database read in place cannot be sent to another address space");
   writeScene(out, database.scene);
   out.vector(database.globalIds);
 }

@@ -23,9 +23,9 @@ struct DatabaseBvh {
   DatabaseBvh(std::shared_ptr<const RegionDatabase> held, const core::ShadingOptions& options,
               const core::BvhShape* sceneShape)
       : database(std::move(held)),
-        shading(database->scene, options),
-        bvh(core::bvhOver<Real>(database->scene, shading, core::everyObjectOf(database->scene), sceneShape,
-                                database->globalIds, kLargestHeldLeaf)) {}
+        shading(database->traced(), options),
+        bvh(core::bvhOver<Real>(database->traced(), shading, database->heldIndices(), sceneShape,
+                                database->wholeIdOf(), kLargestHeldLeaf)) {}
   DatabaseBvh(const DatabaseBvh&) = delete;  // bvh refers to database and shading
   DatabaseBvh& operator=(const DatabaseBvh&) = delete;
 

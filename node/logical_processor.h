@@ -29,8 +29,8 @@
 namespace raycube::node {
 
 // What the host hands a processor (3.2 steps 1-2): its place, its pixel area, its pruned objects. Every
-// object list holds local indices into `database`, which processors holding the same objects share (an engine
-// sending a setup to another address space sends the database's value).
+// object list holds indices into `database`'s traced() scene, which processors holding the same objects share
+// (an engine sending a setup to another address space sends the database's value).
 struct NodeSetup {
   int id = 0;
   CellStructure cells = CellStructure::Auto;  // the paper's cells or a BVH (Auto: by the region's objects)
@@ -133,7 +133,7 @@ class LogicalProcessor {
 
   const MachineContext& context_;
   NodeSetup setup_;
-  const core::Scene& scene_;  // the region's database
+  const core::Scene& scene_;  // the region's database: its copy or the host's scene (RegionDatabase::traced)
   core::Whitted shading_;
   BasicTransport<Real>& transport_;
   SampleRect area_;
@@ -153,8 +153,10 @@ class LogicalProcessor {
   std::vector<Message> inbox_;
   core::BasicRayOutcome<Real> outcome_;
   core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
-  // Mailboxes: an object met again in a later cell of the same ray is not tested again. The cached t is
-  // the object's nearest hit over the whole ray, the very number the reference renderer computes.
+  // Mailboxes, with the paper's cells: an object met again in a later cell of the same ray is not tested
+  // again. The cached t is the object's nearest hit over the whole ray, the very number the reference
+  // renderer computes. Sized to traced() (a processor reading the whole scene in place would hold 12 bytes
+  // per scene object), so none with a BVH, which needs none.
   std::vector<std::uint32_t> mailboxStamp_;
   std::vector<double> mailboxT_;
   std::uint32_t rayStamp_ = 0;

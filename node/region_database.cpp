@@ -1,5 +1,7 @@
 #include "node/region_database.h"
 
+#include "core/bvh.h"
+
 namespace raycube::node {
 namespace {
 
@@ -36,9 +38,21 @@ RegionDatabase regionDatabaseOf(const core::Scene& scene, std::vector<std::uint3
   return db;
 }
 
+RegionDatabase regionDatabaseIn(const core::Scene& scene, std::vector<std::uint32_t> held) {
+  RegionDatabase db;
+  db.inPlace = &scene;
+  db.globalIds = std::move(held);
+  return db;
+}
+
+std::vector<std::uint32_t> RegionDatabase::heldIndices() const {
+  return inPlace ? globalIds : core::everyObjectOf(scene);
+}
+
 void toLocalIndices(const RegionDatabase& database, ObjectLists lists) {
   const std::vector<std::uint32_t>& ids = database.globalIds;
-  if (ids.empty() || ids.back() + 1 == ids.size()) return;  // every object up to the last: local is global
+  if (database.inPlace || ids.empty() || ids.back() + 1 == ids.size())
+    return;  // every object up to the last: local is global
   std::vector<std::uint32_t> localOf(ids.back() + 1);
   for (std::uint32_t local = 0; local < ids.size(); ++local) localOf[ids[local]] = local;
   for (std::vector<std::uint32_t>* list : lists)

@@ -1,6 +1,6 @@
-// The BVH (core/bvh.h), built anew and kept from a whole scene's shape: a tree over part of a scene
-// restricted from the whole scene's tree answers every ray as one built over that part does, and as testing
-// every object does, in both precisions.
+// The BVH (core/bvh.h), built anew and kept from a whole scene's shape: a tree over part of a scene (its
+// copy, or the whole scene's objects in place) restricted from the whole scene's tree answers every ray as
+// one built over that part does, and as testing every object does, in both precisions.
 #include "core/bvh.h"
 
 #include <gtest/gtest.h>
@@ -102,6 +102,11 @@ void checkRestrictions() {
       }
       expectSameAnswers(database, pairs, built, *objects);
     }
+    // Kept over the whole scene itself (no wholeIdOf: a database read in place, by global indices): the
+    // copy's tree, node for node, naming the same objects.
+    const BasicBvh<Real> inPlace(whole, wholeShading, held, shape, {}, 2);
+    EXPECT_EQ(inPlace.nodeCount(), BasicBvh<Real>(database, shading, all, shape, held, 2).nodeCount());
+    expectSameAnswers(whole, inPlace, BasicBvh<Real>(whole, wholeShading, held), held);
   }
 }
 

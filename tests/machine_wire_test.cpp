@@ -190,5 +190,14 @@ TEST(MachineWireTest, MessageCutShortIsAnError) {
     EXPECT_THROW(decodeJob(std::span(bytes.data(), cut)), std::runtime_error) << "cut at " << cut;
 }
 
+// A database read in place names the host's scene by index: another address space has no such scene.
+TEST(MachineWireTest, ADatabaseReadInPlaceDoesNotTravel) {
+  const core::Scene scene = everyShape();
+  const node::MachineContext context = contextOf(scene);
+  node::NodeSetup setup = setupOf(scene, context);
+  setup.database = std::make_shared<const node::RegionDatabase>(node::regionDatabaseIn(scene, {0, 1, 2}));
+  EXPECT_THROW(encodeJob(JobSettings{}, context, std::span(&setup, 1)), std::logic_error);
+}
+
 }  // namespace
 }  // namespace raycube::host

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <tuple>
 #include <variant>
 
 #include "core/nff_reader.h"
@@ -77,6 +78,41 @@ TEST_F(RegionDatabaseTest, ProcessorsHoldingTheSameDatabaseShareOneTree) {
   EXPECT_EQ(tree->database, database);
   EXPECT_NE(sharedBvhOf<double>(equal, core::ShadingOptions{}), tree);  // another copy: its own tree
   EXPECT_EQ(&tree->bvh, &sharedBvhOf<double>(database, core::ShadingOptions{})->bvh);
+}
+
+// Read in place, a database holds no object: its indices are the scene's own, its lists stay as they are,
+// and its tree finds the held objects, and only them, where a copy's finds their copies.
+TEST_F(RegionDatabaseTest, ReadInPlaceItNamesTheScenesObjectsByTheirOwnIndices) {
+  const std::vector<std::uint32_t> held{1, 4, 5};
+  auto inPlace = std::make_shared<const RegionDatabase>(regionDatabaseIn(scene_, held));
+  auto copy = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, held));
+  EXPECT_EQ(&inPlace->traced(), &scene_);
+  EXPECT_TRUE(inPlace->scene.objects.empty());
+  EXPECT_EQ(inPlace->size(), held.size());
+  EXPECT_EQ(inPlace->heldIndices(), held);
+  EXPECT_TRUE(inPlace->wholeIdOf().empty());
+  EXPECT_EQ(copy->heldIndices(), (std::vector<std::uint32_t>{0, 1, 2}));
+  std::vector<std::uint32_t> region{4, 1}, rear{5};
+  std::vector<std::uint32_t>* lists[] = {&region, &rear};
+  toLocalIndices(*inPlace, lists);
+  EXPECT_EQ(region, (std::vector<std::uint32_t>{4, 1}));
+  EXPECT_EQ(rear, (std::vector<std::uint32_t>{5}));
+
+  const core::Whitted shading(scene_, core::ShadingOptions{});
+  const core::BvhShape shape = core::Bvh(scene_, shading).shape();
+  const DatabaseBvh<double> inPlaceTree(inPlace, core::ShadingOptions{}, &shape);
+  const DatabaseBvh<double> copyTree(copy, core::ShadingOptions{}, &shape);
+  core::TraceCounters counters;
+  // Along the row of spheres from each end and from between them: the nearest held sphere, never 0, 2 or 3.
+  for (const auto& [x, dx, expected] : {std::tuple{-10.0, 1.0, 1u}, std::tuple{-2.0, 1.0, 4u},
+                                        std::tuple{10.0, -1.0, 5u}, std::tuple{2.0, -1.0, 1u}}) {
+    const core::Ray ray{{x, 0, 0}, {dx, 0, 0}, 0, core::kInfinity};
+    const core::Hit a = inPlaceTree.bvh.closestHit(ray, counters), b = copyTree.bvh.closestHit(ray, counters);
+    EXPECT_EQ(a.object, expected) << "from x = " << x;
+    ASSERT_TRUE(b.found());
+    EXPECT_EQ(copy->globalIds[b.object], expected);
+    EXPECT_EQ(a.t, b.t);
+  }
 }
 
 }  // namespace
