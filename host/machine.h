@@ -13,6 +13,7 @@
 #include "host/render_result.h"
 #include "host/render_settings.h"
 #include "node/logical_processor.h"
+#include "node/scheduling.h"
 #include "queues/queue_stats.h"
 
 namespace raycube::host {
@@ -35,6 +36,9 @@ struct MachineSettings {
   int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
   unsigned jitterSeed = 0;  // tests: > 0 injects random delays around every transport operation
+  // Threads: rays waiting for room machine-wide from which no primary ray is shot (node::scheduling::
+  // kMachineBacklogLimit); tests lower it to hold primaries back often.
+  std::size_t backlogLimit = node::scheduling::kMachineBacklogLimit;
   std::optional<EmulatedPlatform> emulate;  // set: run on SimGrid in that machine's simulated time
   bool mpi = false;         // run the processors on the other ranks of MPI_COMM_WORLD (host/mpi_machine.h)
   std::size_t rayBatch = 16;  // MPI: rays per message to one rank, at most

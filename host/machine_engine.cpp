@@ -9,7 +9,8 @@ template <class Real>
 std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings,
                                                 const std::vector<std::uint32_t>& hypercubeNode) {
   if (settings.mpi || settings.emulate) return distributedEngines().make<Real>(settings, hypercubeNode);
-  return std::make_unique<ThreadedMachine<Real>>(settings.queueCapacity, settings.jitterSeed);
+  return std::make_unique<ThreadedMachine<Real>>(settings.queueCapacity, settings.jitterSeed,
+                                                 settings.backlogLimit);
 }
 
 template std::unique_ptr<MachineEngine<float>> makeEngine<float>(const MachineSettings&,

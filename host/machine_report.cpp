@@ -52,18 +52,20 @@ LoadBalance loadBalanceOf(const MachineReport& report) {
 }
 
 std::string machineTable(const MachineReport& report) {
-  std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0, leftScene = 0;
+  std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0, leftScene = 0, held = 0;
   for (const ProcessorReport& p : report.processors) {
     for (int k = 0; k < core::kRayKinds; ++k) byKind[k] += p.node.messagesByKind[k];
     forwarded += p.node.forwarded;
     leftScene += p.node.leftScene;
     refused += p.node.refusedPushes;
+    held += p.node.primariesHeld;
   }
   std::string text = fmt::format(
       "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, light {}; "
-      "forwarded {}; refused pushes {}; rays ended leaving the scene's bounds {}\n",
+      "forwarded {}; refused pushes {}; steps holding primaries back for the machine's backlog {}; "
+      "rays ended leaving the scene's bounds {}\n",
       report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes,
-      byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused, leftScene);
+      byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused, held, leftScene);
   const LoadBalance balance = loadBalanceOf(report);
   const bool mapped = !report.hypercubeNode.empty();
   text += fmt::format("  termination: {} token rounds, {} token passes; ", report.tokenRounds, report.tokenPasses);
@@ -145,6 +147,7 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"leftScene", n.leftScene},
                           {"refusedPushes", n.refusedPushes},
                           {"overflowHighWater", n.overflowHighWater},
+                          {"primariesHeld", n.primariesHeld},
                           {"idleSeconds", p.idleSeconds},
                           {"blockedSeconds", p.blockedSeconds},
                           {"tokenVisits", n.tokenVisits}});

@@ -14,7 +14,7 @@ template <class Real>
 MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
                                       const EngineHooks& hooks) {
   const int processors = int(setups.size());
-  queues::SharedMemoryInterconnect<Real> interconnect(context.regions, queueCapacity_);
+  queues::SharedMemoryInterconnect<Real> interconnect(context.regions, queueCapacity_, backlogLimit_);
   std::vector<std::unique_ptr<queues::JitterTransport<Real>>> jitters;
   std::vector<node::BasicTransport<Real>*> transports;
   for (int id = 0; id < processors; ++id) {

@@ -57,11 +57,35 @@ Step LogicalProcessor<Real>::step() {
   const std::size_t n = transport_.receive(inbox_);
   for (std::size_t k = 0; k < n; ++k) onReceived(inbox_[k]);
   progressed |= n > 0;
-  // Back-pressure (see scheduling::kBacklogLimit): no new primary rays while rays wait for room.
-  if (n == 0 && backlog() < scheduling::kBacklogLimit) progressed |= shootNextPrimary();
+  if (n == 0) progressed |= shootIfAllowed();
+  reportBacklog();
   if (!progressed) return idleStep();
   publishProgress();
   return Step::Worked;
+}
+
+// Back-pressure (scheduling::kBacklogLimit, kMachineBacklogLimit): no new primary rays while rays wait for
+// room, here or, where the transport sees it, across the machine.
+template <class Real>
+bool LogicalProcessor<Real>::primariesAllowed() const {
+  return backlog() < scheduling::kBacklogLimit && !transport_.primariesHeld();
+}
+
+// The next primary ray, if back-pressure allows it; counts the steps that found the machine holding it back.
+template <class Real>
+bool LogicalProcessor<Real>::shootIfAllowed() {
+  if (!primariesLeft()) return false;
+  if (primariesAllowed()) return shootNextPrimary();
+  stats_.primariesHeld += transport_.primariesHeld();
+  return false;
+}
+
+template <class Real>
+void LogicalProcessor<Real>::reportBacklog() {
+  const std::size_t now = backlog();
+  if (now != reportedBacklog_)
+    transport_.countWaiting(std::ptrdiff_t(now) - std::ptrdiff_t(reportedBacklog_));
+  reportedBacklog_ = now;
 }
 
 template <class Real>
@@ -398,8 +422,13 @@ std::size_t LogicalProcessor<Real>::backlog() const {
 }
 
 template <class Real>
+bool LogicalProcessor<Real>::primariesLeft() const {
+  return nextPrimary_ < area_.count() * context_.view.raysPerSample();
+}
+
+template <class Real>
 bool LogicalProcessor<Real>::passive() const {
-  if (nextPrimary_ < area_.count() * context_.view.raysPerSample() || !local_.empty()) return false;
+  if (primariesLeft() || !local_.empty()) return false;
   for (const auto& pending : overflow_)
     if (!pending.empty()) return false;
   return true;
@@ -427,6 +456,7 @@ Step LogicalProcessor<Real>::idleStep() {
 template <class Real>
 bool LogicalProcessor<Real>::readyToStep() const {
   if (transport_.terminated() || transport_.anyIncoming()) return true;
+  if (primariesLeft() && primariesAllowed()) return true;  // held back by the machine, and now let go
   for (std::size_t slot = 0; slot < overflow_.size(); ++slot)
     if (!overflow_[slot].empty() && transport_.canSend(neighbours_[slot])) return true;
   return !termination_.holdsToken() && transport_.hasToken();

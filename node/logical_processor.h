@@ -73,6 +73,7 @@ struct NodeStats {
   std::uint64_t forwarded = 0;      // messages passed on towards a non-adjacent destination (hops)
   std::uint64_t leftScene = 0;      // rays ended where they left their region, beyond the scene's bounds
   std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
+  std::uint64_t primariesHeld = 0;  // steps that would have shot a primary but for the machine's backlog
   std::uint64_t overflowHighWater = 0;
   std::uint64_t tokenVisits = 0;
   std::uint32_t tokenRounds = 0;  // node 0: token rounds started
@@ -107,6 +108,9 @@ class LogicalProcessor {
  private:
   // Synthesis task
   bool shootNextPrimary();
+  bool primariesLeft() const;
+  bool primariesAllowed() const;
+  bool shootIfAllowed();
   void evaluate(Message message, bool primary);
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
@@ -130,6 +134,7 @@ class LogicalProcessor {
   void publishProgress();
   bool passive() const;
   std::size_t backlog() const;  // rays waiting for room in a neighbour's FIFO
+  void reportBacklog();         // its change since the last report, to the transport
 
   const MachineContext& context_;
   NodeSetup setup_;
@@ -146,6 +151,7 @@ class LogicalProcessor {
   // With CellStructure::Bvh, the region's own objects, the only ones a hit inside the region can be on.
   std::unique_ptr<const core::BasicBvh<Real>> regionBvh_;
   long long nextPrimary_ = 0;
+  std::size_t reportedBacklog_ = 0;                  // backlog() as last told the transport (countWaiting)
   std::atomic<std::uint64_t> segmentsEvaluated_{0};  // written by this node only, once per step that worked
   std::vector<Message> local_;                   // rays spawned here, still to evaluate here
   const std::vector<int>& neighbours_;           // processors across this region's faces

@@ -31,6 +31,13 @@ class BasicTransport {
   virtual void sendContribution(const core::Contribution& contribution) = 0;
   virtual void flushContributions() = 0;
 
+  // Machine-wide back-pressure, where one memory holds every processor's waiting rays (shared memory):
+  // the node reports each change of how many of its rays wait for room in a neighbour's FIFO, and shoots
+  // no primary ray while primariesHeld(). A distributed machine (the iPSC, its emulation, MPI ranks) has no
+  // such view: never held, as by default.
+  virtual void countWaiting(std::ptrdiff_t /*change*/) {}
+  virtual bool primariesHeld() const { return false; }
+
   virtual bool hasToken() const = 0;
   virtual bool receiveToken(Token& token) = 0;
   virtual void passToken(const Token& token) = 0;  // to the next node on the ring

@@ -34,6 +34,8 @@ class JitterTransport final : public node::BasicTransport<Real> {
     jitter();
     inner_.flushContributions();
   }
+  void countWaiting(std::ptrdiff_t change) override { inner_.countWaiting(change); }
+  bool primariesHeld() const override { return inner_.primariesHeld(); }
   bool hasToken() const override { return inner_.hasToken(); }
   bool receiveToken(node::Token& token) override {
     jitter();

@@ -44,6 +44,8 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
   void sendContribution(const core::Contribution& c) override { sender_.send(c); }
   void flushContributions() override { sender_.flush(); }
 
+  void countWaiting(std::ptrdiff_t change) override { machine_.countWaiting(change); }
+  bool primariesHeld() const override { return machine_.primariesHeld(); }
   bool hasToken() const override { return machine_.mailboxes_[id_]->holds(); }
   bool receiveToken(node::Token& token) override { return machine_.mailboxes_[id_]->take(token); }
   void passToken(const node::Token& token) override {
@@ -67,8 +69,11 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
 };
 
 template <class Real>
-SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& regions, std::size_t queueCapacity)
+SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& regions,
+                                                         std::size_t queueCapacity, std::size_t backlogLimit)
     : regions_(regions),
+      backlogLimit_(std::int64_t(backlogLimit)),
+      backlogRelease_(std::int64_t(node::scheduling::machineBacklogRelease(backlogLimit))),
       bells_([&] {
         std::vector<std::unique_ptr<Doorbell>> bells;
         for (int p = 0; p < regions.processors(); ++p) bells.push_back(std::make_unique<Doorbell>());
@@ -99,6 +104,31 @@ node::BasicTransport<Real>& SharedMemoryInterconnect<Real>::endpoint(int process
 template <class Real>
 typename SharedMemoryInterconnect<Real>::RayQueue* SharedMemoryInterconnect<Real>::queue(int from, int to) const {
   return outgoing_[from][regions_.neighbourSlot(from, to)].get();
+}
+
+// The count and whether it holds primaries back change together, in one word (count << 1 | held): held
+// from backlogLimit_ waiting rays until fewer than backlogRelease_ wait. The change that lets
+// go rings every processor: those held back sleep until it does (their readiness reads the word after it is
+// published, as a FIFO's after a push).
+template <class Real>
+void SharedMemoryInterconnect<Real>::countWaiting(std::ptrdiff_t change) {
+  std::uint64_t word = backPressure_.load(std::memory_order_relaxed), next = 0;
+  bool letGo = false;
+  do {
+    const std::int64_t count = std::int64_t(word >> 1) + change;
+    const bool held = (word & 1) != 0;
+    const bool holds = count >= (held ? backlogRelease_ : backlogLimit_);
+    letGo = held && !holds;
+    next = std::uint64_t(count) << 1 | std::uint64_t(holds);
+  } while (
+      !backPressure_.compare_exchange_weak(word, next, std::memory_order_acq_rel, std::memory_order_relaxed));
+  if (letGo)
+    for (const auto& bell : bells_) bell->ring();
+}
+
+template <class Real>
+bool SharedMemoryInterconnect<Real>::primariesHeld() const {
+  return (backPressure_.load(std::memory_order_acquire) & 1) != 0;
 }
 
 template <class Real>

@@ -1,16 +1,19 @@
 #pragma once
 // The machine's interconnect in one address space (Priol & Bouatouch 3.5): a bounded lock-free FIFO per
 // directed adjacency (capacity --queue-capacity, 128 as on the iPSC), a doorbell per processor, a token
-// mailbox per processor on the ring (3.6), and a block channel per processor to the host (3.4). Each
-// processor talks to it through its endpoint (the node's transport); the threads' driver waits on the
+// mailbox per processor on the ring (3.6), a block channel per processor to the host (3.4), and the count
+// of rays waiting for room machine-wide, which holds primary rays back (scheduling::kMachineBacklogLimit).
+// Each processor talks to it through its endpoint (the node's transport); the threads' driver waits on the
 // processor's doorbell, and the host drains the channel.
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "node/region_map.h"
 #include "node/scheduling.h"
 #include "node/transport.h"
+#include "queues/cache_line.h"
 #include "queues/doorbell.h"
 #include "queues/handoff_slot.h"
 #include "queues/host_channel.h"
@@ -27,7 +30,9 @@ class SharedMemoryInterconnect {
  public:
   using RayQueue = SpscQueue<node::BasicRayMessage<Real>, Accounting::kOn>;
 
-  SharedMemoryInterconnect(const node::RegionMap& regions, std::size_t queueCapacity);
+  // backlogLimit: waiting rays from which primaries are held back (scheduling::kMachineBacklogLimit).
+  SharedMemoryInterconnect(const node::RegionMap& regions, std::size_t queueCapacity,
+                           std::size_t backlogLimit = node::scheduling::kMachineBacklogLimit);
   SharedMemoryInterconnect(const SharedMemoryInterconnect&) = delete;
   SharedMemoryInterconnect& operator=(const SharedMemoryInterconnect&) = delete;
   ~SharedMemoryInterconnect();
@@ -40,6 +45,10 @@ class SharedMemoryInterconnect {
     waitUntil(*bells_[processor], ready, WaitPolicy{policy.spins, policy.yields});
   }
   ContributionChannel& hostChannel() { return channel_; }
+  // Rays waiting in every processor's overflow lists, as they report them (BasicTransport::countWaiting).
+  std::int64_t waitingRays() const {
+    return std::int64_t(backPressure_.load(std::memory_order_relaxed) >> 1);
+  }
   bool terminated() const { return terminated_.load(std::memory_order_acquire); }
   // Saturation of the FIFOs a processor sends into, summed per face of the processor.
   QueueStats outgoingStats(int processor, node::Face face) const;
@@ -48,14 +57,19 @@ class SharedMemoryInterconnect {
   class Endpoint;
   using Mailbox = HandoffSlot<node::Token>;
   RayQueue* queue(int from, int to) const;
+  void countWaiting(std::ptrdiff_t change);
+  bool primariesHeld() const;
 
   const node::RegionMap& regions_;
+  const std::int64_t backlogLimit_, backlogRelease_;
   std::vector<std::unique_ptr<Doorbell>> bells_;
   // outgoing_[p][k]: from processor p to its k-th neighbour
   std::vector<std::vector<std::unique_ptr<RayQueue>>> outgoing_;
   std::vector<std::unique_ptr<Mailbox>> mailboxes_;
   ContributionChannel channel_;
   std::atomic<bool> terminated_{false};
+  // Rays waiting in the overflow lists, shifted left once, and whether primaries are held (the low bit).
+  alignas(kCacheLine) std::atomic<std::uint64_t> backPressure_{0};
   std::vector<std::unique_ptr<Endpoint>> endpoints_;
 };
 

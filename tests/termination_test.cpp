@@ -1,7 +1,8 @@
 // Termination of the message-passing machine (Priol & Bouatouch 3.6, made safe by Safra's counting token,
 // EWD 998): a run with the smallest FIFOs on the largest grid still finishes (no deadlock, 2.2), and under
 // random delays around every transport operation termination is never declared while a ray is still alive:
-// every image is the reference image and every contribution reached the host.
+// every image is the reference image and every contribution reached the host. Primaries held back for the
+// machine's backlog are let go again.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -73,6 +74,33 @@ TEST(TerminationTest, CapacityOneOnEightByEightFinishes) {
       "8x8 capacity 1, %dx%d: %llu messages, %llu refused pushes, %u token rounds, %llu token passes\n", side,
       side, (unsigned long long)t.messages, (unsigned long long)t.refused, report.tokenRounds,
       (unsigned long long)report.tokenPasses);
+}
+
+// Machine-wide back-pressure (node::scheduling::kMachineBacklogLimit) at its tightest: primaries held back
+// from the first ray waiting anywhere until none waits. Processors sleeping for the release must be woken by
+// it, or the run hangs; the image, the rays and the contributions are still the reference's, under random
+// delays.
+TEST(TerminationTest, PrimariesHeldForTheMachinesBacklogAreLetGo) {
+  const core::Scene scene = core::makeBalls(2);
+  const int side = sanitized() ? 24 : 48;
+  const RenderSettings settings = settingsFor(side);
+  const RenderResult reference = renderReference(scene, settings);
+  std::uint64_t held = 0;
+  for (unsigned seed : {0u, 1u, 2u}) {
+    MachineSettings machine;
+    machine.rows = 8;
+    machine.columns = 8;
+    machine.queueCapacity = 1;
+    machine.backlogLimit = 1;
+    machine.jitterSeed = seed;
+    machine.lightRays = node::LightRayMode::Messages;
+    const std::string label = "backlog limit 1, jitter seed " + std::to_string(seed);
+    MachineReport report;
+    const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
+    expectComplete(reference, result, report, label);
+    for (const ProcessorReport& p : report.processors) held += p.node.primariesHeld;
+  }
+  EXPECT_GT(held, 0u) << "the machine's backlog must have held primaries back";
 }
 
 template <class T>
