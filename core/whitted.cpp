@@ -6,12 +6,14 @@
 
 namespace raycube::core {
 
-Whitted::Whitted(const Scene& scene, ShadingOptions options) : scene_(scene), options_(options) {
+Whitted::Whitted(const Scene& scene, ShadingOptions options) : Whitted(scene, options, scene.features()) {}
+
+Whitted::Whitted(const Scene& scene, ShadingOptions options, const SceneFeatures& features)
+    : scene_(scene), options_(options) {
   const double count = double(scene.lights.size());
   ambient_ = count > 0 ? std::sqrt(count) / (2 * count) : 0.0;
   for (const Light& light : scene.lights)
     lightIntensity_.push_back(light.hasColor ? light.color : Color(ambient_));
-  const SceneFeatures features = scene.features();
   sceneTransmits_ = features.transmission;
   spawnsSecondaryRays_ = options.maxDepth > 1 && (features.reflection || features.transmission);
 }

@@ -134,10 +134,11 @@ void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::
     setOf[p] = at->second;
   }
   std::vector<std::shared_ptr<const node::RegionDatabase>> databases(sets.size());
+  const core::SceneFeatures features = inPlace ? scene.features() : core::SceneFeatures{};
   parallelFor(int(sets.size()), [&](int d) {
     const std::vector<std::uint32_t>& objects = *sets[std::size_t(d)];
     databases[std::size_t(d)] = std::make_shared<const node::RegionDatabase>(
-        inPlace ? node::regionDatabaseIn(scene, objects) : node::regionDatabaseOf(scene, objects));
+        inPlace ? node::regionDatabaseIn(scene, features, objects) : node::regionDatabaseOf(scene, objects));
   });
   for (std::size_t p = 0; p < setups.size(); ++p) setups[p].database = databases[setOf[p]];
   parallelFor(int(setups.size()), [&](int p) {

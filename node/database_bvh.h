@@ -23,7 +23,7 @@ struct DatabaseBvh {
   DatabaseBvh(std::shared_ptr<const RegionDatabase> held, const core::ShadingOptions& options,
               const core::BvhShape* sceneShape)
       : database(std::move(held)),
-        shading(database->traced(), options),
+        shading(database->traced(), options, database->features()),
         bvh(core::bvhOver<Real>(database->traced(), shading, database->heldIndices(), sceneShape,
                                 database->wholeIdOf(), kLargestHeldLeaf)) {}
   DatabaseBvh(const DatabaseBvh&) = delete;  // bvh refers to database and shading

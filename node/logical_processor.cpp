@@ -16,7 +16,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
     : context_(context),
       setup_(std::move(setup)),
       scene_(setup_.database->traced()),
-      shading_(scene_, context.shading),
+      shading_(scene_, context.shading, setup_.database->features()),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
       structure_(chosenFor(setup_.cells, setup_.objects.size())),

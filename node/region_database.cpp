@@ -38,9 +38,11 @@ RegionDatabase regionDatabaseOf(const core::Scene& scene, std::vector<std::uint3
   return db;
 }
 
-RegionDatabase regionDatabaseIn(const core::Scene& scene, std::vector<std::uint32_t> held) {
+RegionDatabase regionDatabaseIn(const core::Scene& scene, const core::SceneFeatures& features,
+                                std::vector<std::uint32_t> held) {
   RegionDatabase db;
   db.inPlace = &scene;
+  db.inPlaceFeatures = features;
   db.globalIds = std::move(held);
   return db;
 }

@@ -19,10 +19,12 @@ namespace raycube::node {
 struct RegionDatabase {
   core::Scene scene;                     // a copy: the held objects, in ascending global index order
   const core::Scene* inPlace = nullptr;  // or the host's whole scene, read in place (it outlives the run)
+  core::SceneFeatures inPlaceFeatures;   // that scene's, worked out once for every processor
   std::vector<std::uint32_t> globalIds;  // the held objects' global indices, ascending
   std::size_t size() const { return globalIds.size(); }
   // The scene the processor traces, whose object indices its lists hold: local (a copy) or global (in place).
   const core::Scene& traced() const { return inPlace ? *inPlace : scene; }
+  core::SceneFeatures features() const { return inPlace ? inPlaceFeatures : scene.features(); }
   // The held objects as indices into traced().
   std::vector<std::uint32_t> heldIndices() const;
   // Where traced()'s objects sit in the whole scene (core::BasicBvh's wholeIdOf): globalIds for a copy;
@@ -39,8 +41,10 @@ using ObjectLists = std::span<std::vector<std::uint32_t>* const>;
 std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObjects);
 // The database of the objects `held` (ascending global indices into `scene`): their copy.
 RegionDatabase regionDatabaseOf(const core::Scene& scene, std::vector<std::uint32_t> held);
-// The same objects read in place, in `scene`, which must outlive the database.
-RegionDatabase regionDatabaseIn(const core::Scene& scene, std::vector<std::uint32_t> held);
+// The same objects read in place, in `scene` (whose features() are `features`), which must outlive the
+// database.
+RegionDatabase regionDatabaseIn(const core::Scene& scene, const core::SceneFeatures& features,
+                                std::vector<std::uint32_t> held);
 // Rewrites each list, of global indices all held by `database`, into the indices of its traced() scene (a
 // copy's local indices; in place, unchanged).
 void toLocalIndices(const RegionDatabase& database, ObjectLists lists);

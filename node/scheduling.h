@@ -21,8 +21,9 @@ inline constexpr std::size_t kBacklogLimit = 64;
 // shoots a primary ray from the moment kMachineBacklogLimit rays wait in all the overflow lists together
 // until fewer than half as many do. A processor's own limit leaves the others shooting, and the
 // rays they spawn pile up in front of the busiest regions: mount 6 at 8 x 8 had 115,000 rays waiting at the
-// lists' high waters and a 12 MB peak of them; peak memory 63.6 -> 54.4 MB with these. Lower limits saved
-// 1-2 MB more and cost 4-6% of CPU (every release wakes the processors held back); 8192 about 1.5%.
+// lists' high waters and a 12 MB peak of them; peak memory 63.6 -> 53.8 MB with these, CPU unchanged
+// (paired, 1.005). Limits of 2,048-4,096 saved 1-2 MB more and cost 4-6% of CPU: every release wakes the
+// processors held back.
 inline constexpr std::size_t kMachineBacklogLimit = 8192;
 inline constexpr std::size_t machineBacklogRelease(std::size_t limit) {
   return std::max<std::size_t>(1, limit / 2);

@@ -84,7 +84,7 @@ TEST_F(RegionDatabaseTest, ProcessorsHoldingTheSameDatabaseShareOneTree) {
 // and its tree finds the held objects, and only them, where a copy's finds their copies.
 TEST_F(RegionDatabaseTest, ReadInPlaceItNamesTheScenesObjectsByTheirOwnIndices) {
   const std::vector<std::uint32_t> held{1, 4, 5};
-  auto inPlace = std::make_shared<const RegionDatabase>(regionDatabaseIn(scene_, held));
+  auto inPlace = std::make_shared<const RegionDatabase>(regionDatabaseIn(scene_, scene_.features(), held));
   auto copy = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, held));
   EXPECT_EQ(&inPlace->traced(), &scene_);
   EXPECT_TRUE(inPlace->scene.objects.empty());
