@@ -195,7 +195,8 @@ TEST(MachineWireTest, ADatabaseReadInPlaceDoesNotTravel) {
   const core::Scene scene = everyShape();
   const node::MachineContext context = contextOf(scene);
   node::NodeSetup setup = setupOf(scene, context);
-  setup.database = std::make_shared<const node::RegionDatabase>(node::regionDatabaseIn(scene, scene.features(), {0, 1, 2}));
+  setup.database = std::make_shared<const node::RegionDatabase>(
+      node::regionDatabaseIn(scene, scene.features(), {0, 1, 2}));
   EXPECT_THROW(encodeJob(JobSettings{}, context, std::span(&setup, 1)), std::logic_error);
 }
 
