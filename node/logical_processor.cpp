@@ -9,6 +9,17 @@
 #include "node/scheduling.h"
 
 namespace raycube::node {
+namespace {
+
+// Mailboxes for every object the walk can meet, the region's and the rear's: indices up to the largest.
+std::size_t mailboxesFor(const NodeSetup& setup) {
+  std::uint32_t end = 0;
+  for (const std::vector<std::uint32_t>* list : {&setup.objects, &setup.rearObjects})
+    for (std::uint32_t o : *list) end = std::max(end, o + 1);
+  return end;
+}
+
+}  // namespace
 
 template <class Real>
 LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetup setup,
@@ -25,7 +36,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
       inbox_(scheduling::kInboxBatch),
-      mailboxStamp_(structure_ == CellStructure::Paper ? scene_.objects.size() : 0, 0),
+      mailboxStamp_(structure_ == CellStructure::Paper ? mailboxesFor(setup_) : 0, 0),
       mailboxT_(mailboxStamp_.size(), 0.0),
       termination_(setup_.id) {
   setup_.objectBoxes = {};  // the cells are cut

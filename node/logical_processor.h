@@ -161,8 +161,9 @@ class LogicalProcessor {
   core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
   // Mailboxes, with the paper's cells: an object met again in a later cell of the same ray is not tested
   // again. The cached t is the object's nearest hit over the whole ray, the very number the reference
-  // renderer computes. Sized to traced() (a processor reading the whole scene in place would hold 12 bytes
-  // per scene object), so none with a BVH, which needs none.
+  // renderer computes. Only up to the largest index the walk can meet (a processor reading the whole scene
+  // in place would otherwise hold 12 bytes per scene object: sombrero 3's 16 empty sky regions held 6 MB),
+  // and none with a BVH, which needs none.
   std::vector<std::uint32_t> mailboxStamp_;
   std::vector<double> mailboxT_;
   std::uint32_t rayStamp_ = 0;
