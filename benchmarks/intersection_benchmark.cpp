@@ -280,23 +280,25 @@ BENCHMARK_CAPTURE(BM_BvhBuild, balls4_every_core, "balls", Bvh::BuildOn::EveryCo
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// A processor's database BVH keeps the shape of the host's tree over the whole scene, restricted to what the
-// processor holds (here every other object): the cost per processor and database. items/s: objects kept.
-void BM_BvhRestrict(benchmark::State& state, const char* name) {
+// A processor's BVHs keep the shape of the host's tree over the whole scene, restricted to what the
+// processor holds (every `stride`-th object: 2 as a dense region, 16 as scattered light-volume objects), in
+// place (the whole scene's own indices), with leaves of up to `largestLeaf` objects: the cost per processor
+// and database. items/s: objects kept.
+void BM_BvhRestrict(benchmark::State& state, const char* name, std::uint32_t stride, std::uint32_t largestLeaf) {
   const Scene scene = makeSpdScene(name);
   const Whitted shading(scene, ShadingOptions{});
   const BvhShape whole = Bvh(scene, shading).shape();
-  const std::vector<std::uint32_t> identity = everyObjectOf(scene);
   std::vector<std::uint32_t> held;
-  for (std::uint32_t o = 0; o < identity.size(); o += 2) held.push_back(o);
+  for (std::uint32_t o = 0; o < scene.objects.size(); o += stride) held.push_back(o);
   for (auto _ : state) {
-    const Bvh bvh(scene, shading, held, whole, identity);
+    const Bvh bvh(scene, shading, held, whole, {}, largestLeaf);
     benchmark::DoNotOptimize(bvh.nodeCount());
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(held.size()));
 }
-BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3, "sombrero")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BvhRestrict, balls4, "balls")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_half_leaf1, "sombrero", 2, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_sixteenth_leaf2, "sombrero", 16, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhRestrict, balls4_half_leaf1, "balls", 2, 1)->Unit(benchmark::kMillisecond);
 
 // The host's pruning box tree over every object's world box, of the sampling BVH's shape (made twice per
 // machine run: world and eye-frame boxes), and where the scene lies (4 boxes of median splits). items/s:

@@ -73,11 +73,16 @@ BvhShape BasicBvh<Real>::shape() const {
 template <class Real>
 struct BasicBvh<Real>::Restriction {
   static constexpr std::uint32_t kNotHeld = std::numeric_limits<std::uint32_t>::max();
-  static constexpr std::uint8_t kSaturated = 255;
+  static constexpr std::uint8_t kLargestSaturation = 255;
   const BvhShape& whole;
-  std::vector<std::uint8_t> keptBelow;  // per whole node, saturating at kSaturated
+  // Per whole node, saturating at saturated = largestLeaf + 1: all the restriction asks of a count is
+  // whether it is 0 or at most largestLeaf, and an object's walk up from its leaf stops at the first node
+  // already saturated (BM_BvhRestrict, sombrero 3, every other object, leaves of 1, three interleaved
+  // medians of 10: 1.68 / 1.64 / 1.12 -> 1.48 / 1.45 / 1.01 ms).
+  std::vector<std::uint8_t> keptBelow;
   std::vector<std::uint32_t> localOf;   // per whole object
   std::uint32_t largestLeaf;
+  std::uint8_t saturated;
 };
 
 template <class Real>
@@ -86,17 +91,18 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading,
                          std::span<const std::uint32_t> wholeIdOf, std::uint32_t largestLeaf)
     : scene_(scene), shading_(shading) {
   if (objects.empty()) return;
-  if (largestLeaf == 0 || largestLeaf >= Restriction::kSaturated)
+  if (largestLeaf == 0 || largestLeaf >= Restriction::kLargestSaturation)
     throw std::invalid_argument("a restricted BVH's leaves hold 1 to 254 objects");
   // A byte per whole node, as much temporary memory as a flag: 64 processors restrict at once.
   Restriction r{whole, std::vector<std::uint8_t>(whole.nodes.size(), 0),
-                std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld), largestLeaf};
+                std::vector<std::uint32_t>(whole.leafOf.size(), Restriction::kNotHeld), largestLeaf,
+                std::uint8_t(largestLeaf + 1)};
   std::size_t marked = 0;
   for (std::uint32_t o : objects) {
     const std::uint32_t id = wholeIdOf.empty() ? o : wholeIdOf[o];
     r.localOf[id] = o;
     // Count the object on the way up from its leaf, as far as a count already saturated.
-    for (std::uint32_t n = whole.leafOf[id]; r.keptBelow[n] < Restriction::kSaturated; n = whole.parent[n]) {
+    for (std::uint32_t n = whole.leafOf[id]; r.keptBelow[n] < r.saturated; n = whole.parent[n]) {
       marked += r.keptBelow[n]++ == 0;
       if (n == 0) break;
     }
