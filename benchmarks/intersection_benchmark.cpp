@@ -284,7 +284,8 @@ BENCHMARK_CAPTURE(BM_BvhBuild, balls4_every_core, "balls", Bvh::BuildOn::EveryCo
 // processor holds (every `stride`-th object: 2 as a dense region, 16 as scattered light-volume objects), in
 // place (the whole scene's own indices), with leaves of up to `largestLeaf` objects: the cost per processor
 // and database. items/s: objects kept.
-void BM_BvhRestrict(benchmark::State& state, const char* name, std::uint32_t stride, std::uint32_t largestLeaf) {
+void BM_BvhRestrict(benchmark::State& state, const char* name, std::uint32_t stride,
+                    std::uint32_t largestLeaf) {
   const Scene scene = makeSpdScene(name);
   const Whitted shading(scene, ShadingOptions{});
   const BvhShape whole = Bvh(scene, shading).shape();
@@ -297,7 +298,8 @@ void BM_BvhRestrict(benchmark::State& state, const char* name, std::uint32_t str
   state.SetItemsProcessed(state.iterations() * std::int64_t(held.size()));
 }
 BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_half_leaf1, "sombrero", 2, 1)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_sixteenth_leaf2, "sombrero", 16, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_sixteenth_leaf2, "sombrero", 16, 2)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BvhRestrict, balls4_half_leaf1, "balls", 2, 1)->Unit(benchmark::kMillisecond);
 
 // The host's pruning box tree over every object's world box, of the sampling BVH's shape (made twice per
