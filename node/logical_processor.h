@@ -73,7 +73,7 @@ struct NodeStats {
   std::uint64_t forwarded = 0;      // messages passed on towards a non-adjacent destination (hops)
   std::uint64_t leftScene = 0;      // rays ended where they left their region, beyond the scene's bounds
   std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
-  std::uint64_t primariesHeld = 0;  // steps that would have shot a primary but for the machine's backlog
+  std::uint64_t primariesHeld = 0;  // steps with primaries left that found the machine holding them back
   std::uint64_t overflowHighWater = 0;
   std::uint64_t tokenVisits = 0;
   std::uint32_t tokenRounds = 0;  // node 0: token rounds started

@@ -1,6 +1,7 @@
 #include "queues/shared_memory_interconnect.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 
 namespace raycube::queues {
@@ -82,6 +83,8 @@ SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& 
       channel_(std::size_t(regions.processors()),
                node::scheduling::contributionBlocksPerProcessor(std::size_t(regions.processors())),
                rawBells(bells_)) {
+  // Held from zero waiting rays, no primary ray would ever be shot.
+  if (backlogLimit == 0) throw std::invalid_argument("the machine's backlog limit must be at least one ray");
   const int processors = regions.processors();
   outgoing_.resize(std::size_t(processors));
   for (int p = 0; p < processors; ++p) {

@@ -75,6 +75,10 @@ TEST_F(BackPressure, TheReleaseWakesAProcessorAsleepForIt) {
   sleeper.join();
 }
 
+TEST_F(BackPressure, ALimitOfNoRayIsRefused) {
+  EXPECT_THROW(SharedMemoryInterconnect<double>(regions_, 4, 0), std::invalid_argument);
+}
+
 // Where memory is not shared (the iPSC, SimGrid, MPI) a transport has no machine-wide view: never held.
 TEST(BackPressureElsewhere, ATransportWithoutAViewNeverHolds) {
   struct Distributed final : node::Transport {
