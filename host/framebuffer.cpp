@@ -1,6 +1,8 @@
 #include "host/framebuffer.h"
 
 #include <cmath>
+#include <cstddef>
+#include <new>
 
 #include "core/image.h"
 
@@ -25,7 +27,13 @@ Framebuffer::Fixed toFixed(double value) {
 }  // namespace
 
 Framebuffer::Framebuffer(int samplesX, int samplesY)
-    : samplesX_(samplesX), samplesY_(samplesY), fixed_(std::size_t(samplesX) * samplesY * 3, 0) {}
+    : samplesX_(samplesX),
+      samplesY_(samplesY),
+      size_(std::size_t(samplesX) * std::size_t(samplesY) * 3),
+      fixed_(static_cast<Fixed*>(std::calloc(size_, sizeof(Fixed)))) {
+  static_assert(alignof(Fixed) <= alignof(std::max_align_t), "calloc's alignment must hold a Fixed");
+  if (!fixed_ && size_ > 0) throw std::bad_alloc();
+}
 
 void Framebuffer::add(const Contribution& c) {
   Fixed* slot = &fixed_[std::size_t(c.sample) * 3];
@@ -34,7 +42,7 @@ void Framebuffer::add(const Contribution& c) {
 }
 
 void Framebuffer::add(const Framebuffer& other) {
-  for (std::size_t i = 0; i < fixed_.size(); ++i) fixed_[i] += other.fixed_[i];
+  for (std::size_t i = 0; i < size_; ++i) fixed_[i] += other.fixed_[i];
 }
 
 double Framebuffer::sampleChannel(std::size_t sample, int channel) const {
