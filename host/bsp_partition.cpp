@@ -6,65 +6,56 @@
 #include <stdexcept>
 #include <vector>
 
-#include "host/parallel_for.h"
-
 namespace raycube::host {
 namespace {
 
 constexpr int kCoarseCandidates = 32;
-// Pieces times candidate lines above which the candidates are weighed on all cores.
-constexpr std::size_t kParallelWork = 1 << 18;
+// A cut piece crossing at most this many lines is weighed line by line, exactly as costOfPiece says; a
+// longer one as a linear function of the line, whose slope is then at most its weight over this.
+constexpr long long kLinesWeighedOneByOne = 8;
+
+// Sums over the lines first ... last, each added to a range of lines at once and read in one pass. A line
+// no addition reached sums to exactly zero (what is added and later taken away need not cancel exactly).
+class LineSums {
+ public:
+  LineSums(int first, int last)
+      : first_(first),
+        last_(last),
+        steps_(std::size_t(std::max(0, last - first + 1)) + 1),
+        reached_(steps_.size()) {}
+  // Adds v to every line k with from <= k <= to.
+  void add(double from, double to, double v) {
+    from = std::max(from, double(first_));
+    to = std::min(to, double(last_));
+    if (from > to) return;
+    const std::size_t begin = std::size_t(from) - std::size_t(first_),
+                      end = std::size_t(to) - std::size_t(first_) + 1;
+    steps_[begin] += v;
+    steps_[end] -= v;
+    ++reached_[begin];
+    --reached_[end];
+  }
+  std::vector<double> totals() const {
+    std::vector<double> out(steps_.size() - 1);
+    double running = 0;
+    long long reaching = 0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      running += steps_[i];
+      reaching += reached_[i];
+      out[i] = reaching > 0 ? running : 0;
+    }
+    return out;
+  }
+
+ private:
+  int first_, last_;
+  std::vector<double> steps_;
+  std::vector<long long> reached_;
+};
 
 struct Splitter {
   LoadMetric metric;
   std::vector<node::SampleRect> leaves;
-
-  // The pieces' extents along the axis being cut, side by side (lo <= hi), with their weights: every
-  // candidate line reads them in the pieces' order.
-  struct Extents {
-    std::vector<double> lo, hi, weight;
-  };
-  static Extents extentsAlong(const std::vector<ScreenSegment>& pieces, int axis) {
-    Extents e;
-    for (auto* v : {&e.lo, &e.hi, &e.weight}) v->reserve(pieces.size());
-    for (const ScreenSegment& s : pieces) {
-      const double a = axis == 0 ? s.x0 : s.y0, b = axis == 0 ? s.x1 : s.y1;
-      e.lo.push_back(std::min(a, b));
-      e.hi.push_back(std::max(a, b));
-      e.weight.push_back(s.weight);
-    }
-    return e;
-  }
-
-  // Load on each side of the line k (summed in locals: the callers' outputs sit side by side, written by
-  // different threads), piece by piece in order, so the sums are the same whoever computes them.
-  void sides(const Extents& e, double k, double& belowOut, double& aboveOut) const {
-    double below = 0, above = 0;
-    const std::size_t n = e.lo.size();
-    if (metric == LoadMetric::Rays) {
-      for (std::size_t i = 0; i < n; ++i) {
-        below += e.lo[i] < k ? e.weight[i] : 0;
-        above += e.hi[i] >= k ? e.weight[i] : 0;
-      }
-    } else {
-      // A piece on one side of the line weighs there whole; a piece the line cuts weighs on each side what
-      // clipping it there would give it (costOfPiece: one each, the work share by length).
-      for (std::size_t i = 0; i < n; ++i) {
-        const double lo = e.lo[i], hi = e.hi[i], w = e.weight[i];
-        if (lo >= k) {
-          above += w;
-        } else if (hi <= k) {
-          below += w;
-        } else {
-          const double f = std::clamp((k - lo) / (hi - lo), 0.0, 1.0);
-          below += costOfPiece(w, f);
-          above += costOfPiece(w, 1 - f);
-        }
-      }
-    }
-    belowOut = below;
-    aboveOut = above;
-  }
 
   void split(const node::SampleRect& r, int processors, const std::vector<ScreenSegment>& pieces) {
     if (processors == 1) {
@@ -89,26 +80,17 @@ struct Splitter {
       const long long least = std::max<long long>(1, processors - (hi - k) * across);
       return least > most ? 0 : int(std::clamp<long long>(processors / 2, least, most));
     };
-    const Extents extents = extentsAlong(pieces, axis);
-    // The loads each side of every feasible line among `lines`, then the best in order (the first of equals).
+    const LineLoads loads = loadsAcrossLines(pieces, axis, lo, hi, metric);
+    // The best feasible line among `lines` in order (the first of equals).
     auto consider = [&](const std::vector<int>& lines) {
-      std::vector<int> feasible;
-      for (int k : lines)
-        if (firstSide(k) > 0) feasible.push_back(k);
-      std::vector<double> below(feasible.size()), above(feasible.size());
-      auto weigh = [&](int i) {
-        const auto at = std::size_t(i);
-        sides(extents, feasible[at], below[at], above[at]);
-      };
-      if (pieces.size() * feasible.size() >= kParallelWork)
-        parallelFor(int(feasible.size()), weigh);
-      else
-        for (int i = 0; i < int(feasible.size()); ++i) weigh(i);
-      for (std::size_t i = 0; i < feasible.size(); ++i) {
-        const int k = feasible[i], first = firstSide(k), second = processors - first;
+      for (int k : lines) {
+        const int first = firstSide(k), second = processors - first;
+        if (first == 0) continue;
+        const double below = loads.below[std::size_t(k - lo - 1)],
+                     above = loads.above[std::size_t(k - lo - 1)];
         // Equal load per processor on both sides; with no load at all, equal area per processor.
-        const double imbalance = (below[i] + above[i] > 0)
-                                     ? std::abs(below[i] * second - above[i] * first)
+        const double imbalance = (below + above > 0)
+                                     ? std::abs(below * second - above * first)
                                      : std::abs(double(k - lo) * second - double(hi - k) * first);
         if (imbalance < bestImbalance) {
           bestImbalance = imbalance;
@@ -148,6 +130,52 @@ struct Splitter {
 };
 
 }  // namespace
+
+LineLoads loadsAcrossLines(const std::vector<ScreenSegment>& pieces, int axis, int lo, int hi,
+                           LoadMetric metric) {
+  const int first = lo + 1, last = hi - 1;
+  LineSums below(first, last), above(first, last), slope(first, last);
+  const double before = first - 1, beyond = last + 1;  // ranges reaching past the lines, kept finite
+  for (const ScreenSegment& s : pieces) {
+    const double a = axis == 0 ? s.x0 : s.y0, b = axis == 0 ? s.x1 : s.y1;
+    const double pieceLo = std::min(a, b), pieceHi = std::max(a, b), w = s.weight;
+    // The lines k past its low end (lo < k), and those up to its high end (k <= hi).
+    const double pastLo = std::floor(std::clamp(pieceLo, before, beyond)) + 1;
+    const double upToHi = std::floor(std::clamp(pieceHi, before, beyond));
+    if (metric == LoadMetric::Rays) {
+      below.add(pastLo, beyond, w);
+      above.add(before, upToHi, w);
+      continue;
+    }
+    // Whole above the lines k <= lo, whole below the lines k >= hi, cut by the lines between.
+    const double lastAbove = pastLo - 1, cutFrom = pastLo;
+    const double cutTo = std::ceil(std::clamp(pieceHi, before, beyond)) - 1;
+    above.add(before, lastAbove, w);
+    below.add(std::max(cutTo + 1, cutFrom), beyond, w);
+    if (cutFrom > cutTo) continue;
+    if (cutTo - cutFrom < kLinesWeighedOneByOne) {
+      for (double k = std::max(cutFrom, double(first)); k <= std::min(cutTo, double(last)); ++k) {
+        const double f = std::clamp((k - pieceLo) / (pieceHi - pieceLo), 0.0, 1.0);
+        below.add(k, k, costOfPiece(w, f));
+        above.add(k, k, costOfPiece(w, 1 - f));
+      }
+      continue;
+    }
+    // costOfPiece(w, (k - lo) / (hi - lo)) = 1 + rate (k - lo) below, its complement w - rate (k - lo) above.
+    const double rate = (w - 1) / (pieceHi - pieceLo);
+    below.add(cutFrom, cutTo, 1 - rate * pieceLo);
+    above.add(cutFrom, cutTo, w + rate * pieceLo);
+    slope.add(cutFrom, cutTo, rate);
+  }
+  LineLoads loads{below.totals(), above.totals()};
+  const std::vector<double> rates = slope.totals();
+  for (std::size_t i = 0; i < rates.size(); ++i) {
+    const double k = double(first) + double(i);
+    loads.below[i] += rates[i] * k;
+    loads.above[i] -= rates[i] * k;
+  }
+  return loads;
+}
 
 std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
                                            const LoadSample& sample, LoadMetric metric) {

@@ -14,4 +14,15 @@ namespace raycube::host {
 std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
                                            const LoadSample& sample, LoadMetric metric);
 
+// The load on each side of every candidate line of an area [lo, hi) along `axis` (0: x, the lines x = k;
+// 1: y), k = lo + 1 ... hi - 1: below[k - lo - 1] and above[k - lo - 1]. As the BSP weighs a line: the ray
+// metric counts a piece on every side it reaches (lo < k below, hi >= k above); the cost metric counts a
+// piece whole on the side it lies, and a piece the line cuts on both sides by costOfPiece. One pass over the
+// pieces and one over the lines, where weighing each line apart read every piece once per line.
+struct LineLoads {
+  std::vector<double> below, above;
+};
+LineLoads loadsAcrossLines(const std::vector<ScreenSegment>& pieces, int axis, int lo, int hi,
+                           LoadMetric metric);
+
 }  // namespace raycube::host

@@ -63,6 +63,87 @@ TEST(Bsp, FollowsTheLoad) {
   EXPECT_LT(smallest, 100 * 100 / 8);
 }
 
+// The loads each side of every line, as the BSP weighs them, are what weighing each line apart piece by
+// piece gives (the ray metric exactly, its sums being whole numbers): pieces lying on lines, degenerate,
+// short ones a line cuts once, long ones cut by many, reaching past the area, along either axis.
+TEST(Bsp, LoadsAcrossLinesAreThoseOfEachLineWeighedApart) {
+  auto weighApart = [](const std::vector<ScreenSegment>& pieces, int axis, double k, LoadMetric metric,
+                       double& below, double& above) {
+    below = above = 0;
+    for (const ScreenSegment& s : pieces) {
+      const double a = axis == 0 ? s.x0 : s.y0, b = axis == 0 ? s.x1 : s.y1;
+      const double lo = std::min(a, b), hi = std::max(a, b), w = s.weight;
+      if (metric == LoadMetric::Rays) {
+        below += lo < k ? w : 0;
+        above += hi >= k ? w : 0;
+      } else if (lo >= k) {
+        above += w;
+      } else if (hi <= k) {
+        below += w;
+      } else {
+        below += costOfPiece(w, (k - lo) / (hi - lo));
+        above += costOfPiece(w, 1 - (k - lo) / (hi - lo));
+      }
+    }
+  };
+  std::mt19937 random(7);
+  const int lo = 3, hi = 61;
+  std::uniform_real_distribution<double> along(lo - 2, hi + 2), length(0, 3), weight(1, 40);
+  std::uniform_int_distribution<int> line(lo, hi), kind(0, 4);
+  std::vector<ScreenSegment> pieces;
+  for (int i = 0; i < 4000; ++i) {
+    double a = along(random), b = along(random);
+    switch (kind(random)) {
+      case 0:
+        a = b = line(random);
+        break;  // a point on a line
+      case 1:
+        b = a;
+        break;  // a point between lines
+      case 2:
+        b = a + length(random);
+        break;  // short: cut by a few lines, or none
+      case 3:
+        a = line(random), b = line(random);
+        break;  // ends on lines
+      default:
+        break;  // anywhere, long ones too
+    }
+    pieces.push_back(ScreenSegment{a, b, b, a, 1.0});
+  }
+  for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost}) {
+    if (metric == LoadMetric::Cost)
+      for (ScreenSegment& s : pieces) s.weight = weight(random);
+    for (int axis : {0, 1}) {
+      const LineLoads loads = loadsAcrossLines(pieces, axis, lo, hi, metric);
+      ASSERT_EQ(loads.below.size(), std::size_t(hi - lo - 1));
+      ASSERT_EQ(loads.above.size(), std::size_t(hi - lo - 1));
+      for (int k = lo + 1; k < hi; ++k) {
+        double below, above;
+        weighApart(pieces, axis, k, metric, below, above);
+        const std::size_t i = std::size_t(k - lo - 1);
+        if (metric == LoadMetric::Rays) {
+          EXPECT_EQ(loads.below[i], below) << "line " << k;
+          EXPECT_EQ(loads.above[i], above) << "line " << k;
+        } else {
+          EXPECT_NEAR(loads.below[i], below, 1e-12 * (below + above)) << "line " << k;
+          EXPECT_NEAR(loads.above[i], above, 1e-12 * (below + above)) << "line " << k;
+        }
+      }
+    }
+  }
+  EXPECT_TRUE(loadsAcrossLines(pieces, 0, 5, 6, LoadMetric::Cost).below.empty());  // no line between
+  // Beyond every piece a side weighs exactly nothing (the BSP then cuts by area), whatever was added and
+  // taken away before it.
+  std::vector<ScreenSegment> left;
+  for (const ScreenSegment& s : pieces)
+    if (std::max(s.x0, s.x1) < 20) left.push_back(s);
+  for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost}) {
+    const LineLoads loads = loadsAcrossLines(left, 0, lo, hi, metric);
+    for (int k = 20; k < hi; ++k) EXPECT_EQ(loads.above[std::size_t(k - lo - 1)], 0.0) << "line " << k;
+  }
+}
+
 // Figure 9: a segment crossing a splitting line counts in both regions (ray metric); with the cost metric
 // each piece counts one whole (its message and walk set-up) and the work above it in proportion to its length.
 TEST(LoadEstimate, SplitSegmentsCountOnBothSides) {
