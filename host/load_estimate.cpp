@@ -132,8 +132,12 @@ double estimatedTotalRays(const LoadSample& sample, const core::View& view) {
   return double(sample.raysTraced) / double(sample.pixelsSampled) * samples;
 }
 
-bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, double y1, LoadMetric metric,
-                 ScreenSegment& out) {
+namespace {
+
+// The part of a segment inside a rectangle (Liang-Barsky), weighing what the segment weighs, and the fraction
+// of its length kept; false when none.
+bool clipKeeping(const ScreenSegment& in, double x0, double y0, double x1, double y1, ScreenSegment& out,
+                 double& kept) {
   const double dx = in.x1 - in.x0, dy = in.y1 - in.y0;
   double a = 0, b = 1;
   auto edge = [&](double p, double q) {  // keep where p * t <= q
@@ -147,8 +151,24 @@ bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, doubl
   };
   if (!(edge(-dx, in.x0 - x0) && edge(dx, x1 - in.x0) && edge(-dy, in.y0 - y0) && edge(dy, y1 - in.y0)))
     return false;
-  out = ScreenSegment{in.x0 + a * dx, in.y0 + a * dy, in.x0 + b * dx, in.y0 + b * dy, in.weight};
-  if (metric == LoadMetric::Cost && (dx != 0 || dy != 0)) out.weight = costOfPiece(in.weight, b - a);
+  out = ScreenSegment{in.x0 + a * dx, in.y0 + a * dy, in.x0 + b * dx, in.y0 + b * dy, in.weight, in.work};
+  kept = b - a;
+  return true;
+}
+
+// What a piece keeping `kept` of a segment of this weight weighs in the metric (a point keeps it whole).
+double pieceWeight(const ScreenSegment& in, double weight, double kept, LoadMetric metric) {
+  const bool point = in.x1 == in.x0 && in.y1 == in.y0;
+  return metric == LoadMetric::Cost && !point ? costOfPiece(weight, kept) : weight;
+}
+
+}  // namespace
+
+bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, double y1, LoadMetric metric,
+                 ScreenSegment& out) {
+  double kept;
+  if (!clipKeeping(in, x0, y0, x1, y1, out, kept)) return false;
+  out.weight = pieceWeight(in, in.weight, kept, metric);
   return true;
 }
 
@@ -201,35 +221,39 @@ class AreaBuckets {
 
 }  // namespace
 
-std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
-                                  LoadMetric metric) {
-  std::vector<double> loads(areas.size(), 0.0);
+AreaEstimates estimateAreas(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
+                            LoadMetric metric) {
+  AreaEstimates out;
+  for (auto* v : {&out.loads, &out.expected.segments, &out.expected.work}) v->assign(areas.size(), 0.0);
   const AreaBuckets near(areas);
   std::vector<std::uint64_t> seenBy(areas.size(), 0);
   std::uint64_t stamp = 0;
+  const double n = sample.raysPerSegment;
   // Segments in order, so every area sums its pieces in the order the sub-sampling found them.
   for (const ScreenSegment& s : sample.segments) {
     near.forAreasNear(s, seenBy, ++stamp, [&](std::uint32_t i) {
       const node::SampleRect& a = areas[i];
       ScreenSegment piece;
+      double kept;
       // Half-open areas: a piece lying exactly on the far boundary belongs to the next area.
-      if (!clipSegment(s, a.x0, a.y0, a.x1, a.y1, metric, piece)) return;
+      if (!clipKeeping(s, a.x0, a.y0, a.x1, a.y1, piece, kept)) return;
       if (a.x1 < near.width() && std::min(piece.x0, piece.x1) >= a.x1) return;
       if (a.y1 < near.height() && std::min(piece.y0, piece.y1) >= a.y1) return;
-      loads[i] += piece.weight * sample.raysPerSegment;
+      out.loads[i] += pieceWeight(s, s.weight, kept, metric) * n;
+      out.expected.segments[i] += 1.0 * n;
+      out.expected.work[i] += pieceWeight(s, 1 + s.work, kept, LoadMetric::Cost) * n;
     });
   }
-  return loads;
+  return out;
+}
+
+std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
+                                  LoadMetric metric) {
+  return estimateAreas(areas, sample, metric).loads;
 }
 
 ExpectedWork expectedWork(const std::vector<node::SampleRect>& areas, const LoadSample& sample) {
-  LoadSample reweighed = sample;
-  for (ScreenSegment& s : reweighed.segments) s.weight = 1;
-  ExpectedWork expected;
-  expected.segments = estimateLoads(areas, reweighed, LoadMetric::Rays);
-  for (ScreenSegment& s : reweighed.segments) s.weight = 1 + s.work;
-  expected.work = estimateLoads(areas, reweighed, LoadMetric::Cost);
-  return expected;
+  return estimateAreas(areas, sample, LoadMetric::Rays).expected;
 }
 
 }  // namespace raycube::host

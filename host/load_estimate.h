@@ -73,4 +73,12 @@ struct ExpectedWork {
 };
 ExpectedWork expectedWork(const std::vector<node::SampleRect>& areas, const LoadSample& sample);
 
+// Both in one pass over the segments: each area's estimated load in `metric`, and its expected work.
+struct AreaEstimates {
+  std::vector<double> loads;
+  ExpectedWork expected;
+};
+AreaEstimates estimateAreas(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
+                            LoadMetric metric);
+
 }  // namespace raycube::host

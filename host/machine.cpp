@@ -320,6 +320,7 @@ struct HostPreparation {
   LoadSample load;
   node::MachineContext context;
   std::vector<node::NodeSetup> setups;
+  AreaEstimates estimates;  // what the sub-sample puts in each region, once the regions are launched
 };
 
 // The time since the last lap, and a new lap.
@@ -384,7 +385,7 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   if (!machine.emulate)
     for (node::NodeSetup& setup : setups) setup.sceneShape = spatial.shape;
   seconds.pruning = laps.next();
-  return {std::move(load), std::move(context), std::move(setups)};
+  return {std::move(load), std::move(context), std::move(setups), {}};
 }
 
 std::vector<node::SampleRect> areasOf(const node::RegionMap& regions) {
@@ -409,7 +410,8 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
                   SynthesisClock& clock, const std::function<void()>& alongsideSynthesis) {
   progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
   clock.launch = Clock::now();
-  const MachineProgress work(expectedWork(areasOf(host.context.regions), host.load));
+  host.estimates = estimateAreas(areasOf(host.context.regions), host.load, machine.loadMetric);
+  const MachineProgress work(host.estimates.expected);
   EngineHooks hooks;
   hooks.host = &accumulator;
   hooks.synthesisStarts = [&] {
@@ -463,8 +465,8 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   result.traceSeconds = secondsSince(clock.synthesis);
   out.preprocessing.cells = std::chrono::duration<double>(clock.synthesis - clock.launch).count();
   out.contributionsAccumulated = accumulator.count();
-  reportRun(std::move(run), estimateLoads(areasOf(host.context.regions), host.load, machine.loadMetric),
-            host.load, sizeof(node::BasicRayMessage<Real>), result, out);
+  reportRun(std::move(run), host.estimates.loads, host.load, sizeof(node::BasicRayMessage<Real>), result,
+            out);
   return result;
 }
 
