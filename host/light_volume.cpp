@@ -22,9 +22,25 @@ struct LightFrame {
   }
 };
 
+// A face of the pyramid in world space: the points p with n.p + d > 0 lie outside it.
+struct Face {
+  Vec3 n;
+  double d;
+};
+
 struct Pyramid {
   LightFrame frame;
   double zMax, xMin, xMax, yMin, yMax;  // far face and the four side slopes x/z, y/z
+  // In the light frame, outside the far face (z > zMax), behind the apex (z < 0), and beyond each slope
+  // (x > xMax z, x < xMin z, y > yMax z, y < yMin z): six linear functions of the point, made world ones.
+  Face faces[6];
+  void placeFaces() {
+    const LightFrame& f = frame;
+    const Vec3 normals[6] = {
+        f.z, -f.z, f.x - xMax * f.z, xMin * f.z - f.x, f.y - yMax * f.z, yMin * f.z - f.y};
+    for (int i = 0; i < 6; ++i)
+      faces[i] = Face{normals[i], -glm::dot(normals[i], f.s) - (i == 0 ? zMax : 0.0)};
+  }
 };
 
 bool buildPyramid(const Vec3& light, const LightSources& sources, Pyramid& out) {
@@ -42,7 +58,7 @@ bool buildPyramid(const Vec3& light, const LightSources& sources, Pyramid& out) 
   if (glm::length(axis) < 0.5) axis = glm::cross(f.z, Vec3(0, 1, 0));
   f.x = glm::normalize(axis);
   f.y = glm::cross(f.x, f.z);
-  Pyramid p{f, -core::kInfinity, core::kInfinity, -core::kInfinity, core::kInfinity, -core::kInfinity};
+  Pyramid p{f, -core::kInfinity, core::kInfinity, -core::kInfinity, core::kInfinity, -core::kInfinity, {}};
   const double scale = distance + glm::length(sources.eyeBox.extent());
   for (const Vec3& v : sources.corners) {
     const Vec3 l = f.to(v);
@@ -61,38 +77,28 @@ bool buildPyramid(const Vec3& light, const LightSources& sources, Pyramid& out) 
   p.xMax += slack;
   p.yMax += slack;
   p.zMax += core::kCellMarginRelative * scale;
+  p.placeFaces();
   out = p;
   return true;
 }
 
 // A box misses the pyramid when all its corners lie outside one of the pyramid's five faces (or behind
-// the apex): a conservative separating test.
+// the apex): a conservative separating test, each face's least value over the box read at once from its
+// centre and half extent.
 bool boxMayMeetPyramid(const core::Box& box, const Pyramid& p) {
-  bool outside[6] = {true, true, true, true, true, true};
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 l = p.frame.to(Vec3(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
-                                   corner & 4 ? box.hi.z : box.lo.z));
-    outside[0] &= l.z > p.zMax;
-    outside[1] &= l.z < 0;
-    outside[2] &= l.x > p.xMax * l.z;
-    outside[3] &= l.x < p.xMin * l.z;
-    outside[4] &= l.y > p.yMax * l.z;
-    outside[5] &= l.y < p.yMin * l.z;
-  }
-  return !(outside[0] || outside[1] || outside[2] || outside[3] || outside[4] || outside[5]);
+  const Vec3 centre = box.center(), half = 0.5 * box.extent();
+  for (const Face& face : p.faces)
+    if (glm::dot(face.n, centre) - glm::dot(glm::abs(face.n), half) + face.d > 0) return false;
+  return true;
 }
 
-// Every corner strictly inside the pyramid, by a margin: the box, and all it holds, lies inside.
+// Every corner strictly inside the pyramid, by a margin as large as any corner's: the box, and all it
+// holds, lies inside.
 bool boxInsidePyramid(const core::Box& box, const Pyramid& p) {
-  const double m = core::kCellMarginRelative;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 l = p.frame.to(Vec3(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
-                                   corner & 4 ? box.hi.z : box.lo.z));
-    const double slack = m * (1 + glm::length(l));
-    if (!(l.z > slack && l.z < p.zMax - slack && l.x < p.xMax * l.z - slack && l.x > p.xMin * l.z + slack &&
-          l.y < p.yMax * l.z - slack && l.y > p.yMin * l.z + slack))
-      return false;
-  }
+  const Vec3 centre = box.center(), half = 0.5 * box.extent();
+  const double slack = core::kCellMarginRelative * (1 + glm::length(centre - p.frame.s) + glm::length(half));
+  for (const Face& face : p.faces)
+    if (!(glm::dot(face.n, centre) + glm::dot(glm::abs(face.n), half) + face.d < -slack)) return false;
   return true;
 }
 

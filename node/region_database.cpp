@@ -1,5 +1,8 @@
 #include "node/region_database.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "core/bvh.h"
 
 namespace raycube::node {
@@ -20,12 +23,29 @@ core::Scene withoutObjects(const core::Scene& scene) {
 }  // namespace
 
 std::vector<std::uint32_t> heldObjectsOf(ObjectLists lists, std::size_t sceneObjects) {
-  std::vector<char> named(sceneObjects, 0);
+  // Short ascending lists (the host's spatial queries give them so) merge in their length, where a flag per
+  // scene object costs the whole scene for each of 64 processors; long ones take the flags.
+  auto ascending = [](const std::vector<std::uint32_t>* list) {
+    return std::is_sorted(list->begin(), list->end());
+  };
+  std::size_t named = 0;
+  for (const std::vector<std::uint32_t>* list : lists) named += list->size();
+  if (named < sceneObjects / 8 && std::all_of(lists.begin(), lists.end(), ascending)) {
+    std::vector<std::uint32_t> held, merged;
+    for (const std::vector<std::uint32_t>* list : lists) {
+      merged.clear();
+      std::set_union(held.begin(), held.end(), list->begin(), list->end(), std::back_inserter(merged));
+      held.swap(merged);
+    }
+    held.erase(std::unique(held.begin(), held.end()), held.end());  // a list may name an object twice
+    return held;
+  }
+  std::vector<char> isNamed(sceneObjects, 0);
   for (const std::vector<std::uint32_t>* list : lists)
-    for (std::uint32_t g : *list) named[g] = 1;
+    for (std::uint32_t g : *list) isNamed[g] = 1;
   std::vector<std::uint32_t> held;
-  for (std::uint32_t g = 0; g < named.size(); ++g)
-    if (named[g]) held.push_back(g);
+  for (std::uint32_t g = 0; g < isNamed.size(); ++g)
+    if (isNamed[g]) held.push_back(g);
   return held;
 }
 

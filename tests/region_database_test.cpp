@@ -36,6 +36,13 @@ TEST_F(RegionDatabaseTest, HoldsTheUnionOfItsListsOnceEachInTheScenesOrder) {
   std::vector<std::uint32_t> region{4, 1}, light{1, 5, 4}, empty;
   std::vector<std::uint32_t>* lists[] = {&region, &light, &empty};
   EXPECT_EQ(heldObjectsOf(lists, scene_.objects.size()), (std::vector<std::uint32_t>{1, 4, 5}));
+  // Short ascending lists (as the host's queries give them) in a large scene are merged, long ones flagged:
+  // the same union either way, an object named twice in a list or in several held once.
+  std::vector<std::uint32_t> ascending{1, 4, 4}, lights{0, 1, 5}, more{5, 6};
+  std::vector<std::uint32_t>* sorted[] = {&ascending, &lights, &empty, &more};
+  for (std::size_t sceneObjects : {7u, 1000u})
+    EXPECT_EQ(heldObjectsOf(sorted, sceneObjects), (std::vector<std::uint32_t>{0, 1, 4, 5, 6}))
+        << sceneObjects;
 }
 
 TEST_F(RegionDatabaseTest, ListsNameTheSameObjectsInLocalIndices) {
