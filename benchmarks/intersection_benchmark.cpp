@@ -281,7 +281,8 @@ BENCHMARK_CAPTURE(BM_BvhBuild, balls4_every_core, "balls", Bvh::BuildOn::EveryCo
     ->UseRealTime();
 
 // A processor's BVHs keep the shape of the host's tree over the whole scene, restricted to what the
-// processor holds (every `stride`-th object: 2 as a dense region, 16 as scattered light-volume objects), in
+// processor holds (every `stride`-th object: 2 as a dense region, 16 as scattered light-volume objects, 64
+// as one region's of 64), in
 // place (the whole scene's own indices), with leaves of up to `largestLeaf` objects: the cost per processor
 // and database. items/s: objects kept.
 void BM_BvhRestrict(benchmark::State& state, const char* name, std::uint32_t stride,
@@ -299,6 +300,8 @@ void BM_BvhRestrict(benchmark::State& state, const char* name, std::uint32_t str
 }
 BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_half_leaf1, "sombrero", 2, 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_sixteenth_leaf2, "sombrero", 16, 2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BvhRestrict, sombrero3_sixtyfourth_leaf1, "sombrero", 64, 1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BvhRestrict, balls4_half_leaf1, "balls", 2, 1)->Unit(benchmark::kMillisecond);
 
