@@ -3,6 +3,7 @@
 // cannot meet them again has nothing left to hit, wherever it goes: the processor it is in ends it, instead
 // of passing it through empty regions to the screen's edge; the host's load estimate ends its sub-sampled
 // twin at the same place (host/load_estimate.h).
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -27,6 +28,13 @@ inline std::optional<double> lastInsideBounds(const std::vector<core::Box>& boun
 // first box met (a processor asks this at every region exit).
 inline bool meetsBounds(const std::vector<core::Box>& bounds, const core::Vec3& origin, const core::Vec3& direction,
                         double t, double tMax) {
+  // Most rays leave a region with objects still around them: a point inside a box settles it, without the
+  // slab test's divisions (rounding at a box's face can only keep a ray going, never end one early).
+  const core::Vec3 at = origin + t * direction;
+  auto holds = [&](const core::Box& box) {
+    return glm::all(glm::lessThanEqual(box.lo, at)) && glm::all(glm::lessThanEqual(at, box.hi));
+  };
+  if (t <= tMax && std::any_of(bounds.begin(), bounds.end(), holds)) return true;
   const core::InverseDirection<double> inverse(direction);
   double tEnter;
   for (const core::Box& box : bounds)

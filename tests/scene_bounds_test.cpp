@@ -29,6 +29,18 @@ TEST(SceneBounds, NoneWhenTheRayMeetsNoBoxAhead) {
   EXPECT_FALSE(lastInsideBounds(kTwoBoxes, origin, core::Vec3(1, 0, 0), 3, 4));
 }
 
+// A ray at a point inside a box meets it (settled without the slab test), unless its interval has ended;
+// one leaving a box, on its face, still meets it; whichever box holds the point.
+TEST(SceneBounds, ARayInsideABoxMeetsItWhileItsIntervalLasts) {
+  const core::Vec3 origin(0, 0, 0), alongX(1, 0, 0);
+  EXPECT_TRUE(meetsBounds(kTwoBoxes, origin, alongX, 1.5, core::kInfinity));
+  EXPECT_TRUE(meetsBounds(kTwoBoxes, origin, alongX, 5.5, 5.5));
+  EXPECT_TRUE(meetsBounds(kTwoBoxes, origin, alongX, 2, 2.5));   // on the first box's far face
+  EXPECT_FALSE(meetsBounds(kTwoBoxes, origin, alongX, 5.5, 5));  // past its end
+  EXPECT_TRUE(meetsBounds(kTwoBoxes, core::Vec3(5.5, 0, 0), core::Vec3(0, 0, -1), 0.5, core::kInfinity));
+  EXPECT_FALSE(meetsBounds(kTwoBoxes, core::Vec3(5.5, 0, 0), core::Vec3(0, 0, -1), 1.5, core::kInfinity));
+}
+
 // A ray along a box's face, or parallel to a slab it lies in, is inside (the slab test's NaNs leave that
 // slab unconstrained): conservative, never a ray ended that could touch a box.
 TEST(SceneBounds, RaysGrazingABoxCountAsInside) {
