@@ -28,10 +28,11 @@ enum class WalkResult : std::uint8_t { Stopped, Finished, Exited };
 // paper's cells for sparse regions, a BVH for dense ones (the host decides per region, see host/machine.h).
 enum class CellStructure : std::uint8_t { Auto, Paper, Bvh };
 
-// Auto's threshold: a region holding more objects than this is dense. Paired CPU against 64, 8 rounds:
-// mount 6 at 8 x 8 0.92 (its regions around the glass spheres' centres hold 24 to 68 objects in up to 531
-// cells, and every ray inside a sphere crosses them), balls 2 at 4 x 4 0.92, at 8 x 8 0.95 (16: 0.94, 1.06,
-// 0.99); a BVH in every region: balls 2 faster still, mount 6 slower, both within the noise of 8.
+// Auto's threshold: a region holding more objects than this is dense. Paired CPU against 64, 8 rounds (the
+// two runs' environments of one size): mount 6 at 8 x 8 0.91 (its regions around the glass spheres'
+// centres hold 24 to 68 objects in up to 531 cells, and every ray inside a sphere crosses them), jacks 4 at
+// 8 x 8 0.97, balls 2 at 8 x 8 0.96 and at 4 x 4 1.05; the other default-size scenes have no region of 9 to
+// 64 objects. A BVH in every region: balls 2 faster at 8 x 8, mount 6 slower, both within the noise of 8.
 inline constexpr std::size_t kDenseRegionObjects = 8;
 inline CellStructure chosenFor(CellStructure requested, std::size_t regionObjects) {
   if (requested != CellStructure::Auto) return requested;
