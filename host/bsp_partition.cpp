@@ -27,7 +27,7 @@ class LineSums {
   void add(double from, double to, double v) {
     from = std::max(from, double(first_));
     to = std::min(to, double(last_));
-    if (from > to) return;
+    if (!(from <= to)) return;  // also a NaN end: added nowhere
     const std::size_t begin = std::size_t(from) - std::size_t(first_),
                       end = std::size_t(to) - std::size_t(first_) + 1;
     steps_[begin] += v;
