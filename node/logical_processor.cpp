@@ -38,6 +38,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       inbox_(scheduling::kInboxBatch),
       mailboxStamp_(structure_ == CellStructure::Paper ? mailboxesFor(setup_) : 0, 0),
       mailboxT_(mailboxStamp_.size(), 0.0),
+      carriesAhead_(structure_ == CellStructure::Bvh && setup_.database->inPlace != nullptr),
       termination_(setup_.id) {
   setup_.objectBoxes = {};  // the cells are cut
   stats_.id = setup_.id;
@@ -180,6 +181,7 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
   // The paper's cells list an object in every cell it crosses: its answer is kept for the ray (a mailbox);
   // a region's BVH offers each of its objects once.
   auto nearest = [&](std::uint32_t object) {
+    if (object == ahead_.object) return ahead_.t;  // found by a region behind, beyond its part of the ray
     if (mailboxStamp_.empty()) return test(object);
     if (mailboxStamp_[object] != rayStamp_) {
       mailboxStamp_[object] = rayStamp_;
@@ -208,9 +210,16 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
   }
   forEachCandidate(objects, ray.ray, ta, tb, bound, stats_.processed, [&](std::uint32_t object) {
     const core::Hit h{nearest(object), object};
-    if (h.t >= ta && h.t < tb && h.closerThan(hit)) {
-      hit = h;
-      bound = Real(h.t);
+    if (h.t >= ta && h.t < tb) {
+      if (h.closerThan(hit)) {
+        hit = h;
+        bound = Real(h.t);
+      }
+    } else if (carriesAhead_ && h.t >= tb &&
+               (h.t < core::kInfinity ? h.closerThan(ahead_) : !ahead_.found())) {
+      // Beyond this interval, or no hit at all (the first such object met, while no hit lies ahead): the
+      // regions ahead need not test it again.
+      ahead_ = h;
     }
     return true;
   });
@@ -231,9 +240,12 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmission == 1 &&
       startsInLightSourceBox(er.o))
     return finishRay(ray, core::Hit{}, traceWhereItStarts(ray));
-  const double tMax = ray.kind == core::RayKind::Light ? ray.ray.tMax : core::kInfinity;
+  const bool light = ray.kind == core::RayKind::Light;
+  const double tMax = light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
-  double transmission = m.transmission;
+  double transmission = light ? m.transmission : 1.0;
+  ahead_ =
+      carriesAhead_ && !light && m.ahead != kNothingAhead ? core::Hit{m.transmission, m.ahead} : core::Hit{};
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
     return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *regionBvh_, hit, transmission)
@@ -247,7 +259,8 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
       return finishRay(ray, hit, transmission);
     }
     m.tEnter = tExit;
-    m.transmission = transmission;
+    m.transmission = light ? transmission : (ahead_.found() ? ahead_.t : 1.0);
+    m.ahead = light ? kNothingAhead : ahead_.object;
     m.destination = std::uint16_t(owner);
     send(m);
   };

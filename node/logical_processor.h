@@ -167,6 +167,13 @@ class LogicalProcessor {
   std::vector<std::uint32_t> mailboxStamp_;
   std::vector<double> mailboxT_;
   std::uint32_t rayStamp_ = 0;
+  // The ray being evaluated (closest-hit rays, in BVH regions): the nearest hit found beyond the parts of
+  // it visited so far, on an object a region ahead may meet again (BasicRayMessage::ahead). Only where the
+  // processors read the host's scene in place, whose indices are the same in every region (a database's
+  // copy numbers its objects its own way); the paper's cells keep the paper's per-region mailboxes only,
+  // so the emulated machine's counts stay as fitted.
+  core::Hit ahead_;
+  const bool carriesAhead_;
   std::vector<core::Hit> crossed_;
   core::BasicRayTreeScratch<Real> lightRayScratch_;  // the shadow cache of light rays traced where they start
   SafraTermination termination_;
