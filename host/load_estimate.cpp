@@ -247,13 +247,4 @@ AreaEstimates estimateAreas(const std::vector<node::SampleRect>& areas, const Lo
   return out;
 }
 
-std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
-                                  LoadMetric metric) {
-  return estimateAreas(areas, sample, metric).loads;
-}
-
-ExpectedWork expectedWork(const std::vector<node::SampleRect>& areas, const LoadSample& sample) {
-  return estimateAreas(areas, sample, LoadMetric::Rays).expected;
-}
-
 }  // namespace raycube::host

@@ -61,19 +61,15 @@ double estimatedTotalRays(const LoadSample& sample, const core::View& view);
 bool clipSegment(const ScreenSegment& in, double x0, double y0, double x1, double y1, LoadMetric metric,
                  ScreenSegment& out);
 
-// Estimated load of each area: the weights of the segment pieces inside it, times raysPerSegment.
-std::vector<double> estimateLoads(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
-                                  LoadMetric metric);
-
 // What each area's processor will do, for progress: the ray segments it will evaluate (every piece of a
 // split ray counts, as in the ray metric), and their work, each piece weighing one plus its sub-sampled
 // twin's steps and tests shared by length (as in the cost metric, unscaled), whatever metric partitioned.
 struct ExpectedWork {
   std::vector<double> segments, work;
 };
-ExpectedWork expectedWork(const std::vector<node::SampleRect>& areas, const LoadSample& sample);
 
-// Both in one pass over the segments: each area's estimated load in `metric`, and its expected work.
+// In one pass over the segments, each area's estimated load in `metric` (the weights of the segment pieces
+// inside it, times raysPerSegment) and its processor's expected work.
 struct AreaEstimates {
   std::vector<double> loads;
   ExpectedWork expected;

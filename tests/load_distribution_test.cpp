@@ -55,7 +55,7 @@ TEST(Bsp, FollowsTheLoad) {
     sample.segments.push_back(ScreenSegment{10.0 + i % 7, 10.0 + i % 11, 10.5 + i % 7, 10.5 + i % 11, 1});
   sample.segments.push_back(ScreenSegment{90, 90, 91, 91, 1});
   const auto areas = bspPartition(100, 100, 4, sample, LoadMetric::Rays);
-  const std::vector<double> loads = estimateLoads(areas, sample, LoadMetric::Rays);
+  const std::vector<double> loads = estimateAreas(areas, sample, LoadMetric::Rays).loads;
   const double total = loads[0] + loads[1] + loads[2] + loads[3];
   for (double l : loads) EXPECT_LT(l, 0.6 * total);
   long long smallest = 100 * 100;
@@ -150,20 +150,20 @@ TEST(LoadEstimate, SplitSegmentsCountOnBothSides) {
   LoadSample sample;
   sample.segments.push_back(ScreenSegment{1, 5, 9, 5, 8.0});
   const std::vector<node::SampleRect> halves{{0, 5, 0, 10}, {5, 10, 0, 10}};
-  const auto rays = estimateLoads(halves, sample, LoadMetric::Rays);
+  const auto rays = estimateAreas(halves, sample, LoadMetric::Rays).loads;
   EXPECT_EQ(rays[0], 8.0);
   EXPECT_EQ(rays[1], 8.0);
-  const auto cost = estimateLoads(halves, sample, LoadMetric::Cost);
+  const auto cost = estimateAreas(halves, sample, LoadMetric::Cost).loads;
   EXPECT_DOUBLE_EQ(cost[0], 1 + 7.0 / 2);
   EXPECT_DOUBLE_EQ(cost[1], 1 + 7.0 / 2);
   // A quarter of the length: one plus a quarter of the work.
   const std::vector<node::SampleRect> quarters{{0, 3, 0, 10}, {3, 10, 0, 10}};
-  const auto uneven = estimateLoads(quarters, sample, LoadMetric::Cost);
+  const auto uneven = estimateAreas(quarters, sample, LoadMetric::Cost).loads;
   EXPECT_DOUBLE_EQ(uneven[0], 1 + 7.0 / 4);
   EXPECT_DOUBLE_EQ(uneven[1], 1 + 7.0 * 3 / 4);
 }
 
-// Every area's load, clipping every segment against it in order: what estimateLoads must equal exactly
+// Every area's load, clipping every segment against it in order: what estimateAreas' loads must equal exactly
 // (it only skips the areas far from a segment).
 std::vector<double> loadsAgainstEveryArea(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
                                           LoadMetric metric) {
@@ -204,7 +204,7 @@ TEST(LoadEstimate, NearbyAreasGiveExactlyTheLoadsOfEveryArea) {
       if (p > side * side) continue;
       for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost}) {
         const auto areas = bspPartition(side, side, p, sample, metric);
-        EXPECT_EQ(estimateLoads(areas, sample, metric), loadsAgainstEveryArea(areas, sample, metric))
+        EXPECT_EQ(estimateAreas(areas, sample, metric).loads, loadsAgainstEveryArea(areas, sample, metric))
             << side << " px, " << p << " processors";
       }
     }

@@ -174,7 +174,8 @@ TEST(MachineProgress, ExpectedWorkFollowsTheSubsampledSegments) {
   LoadSample sample;
   sample.raysPerSegment = 4;
   sample.segments = {{0.5, 0.5, 0.5, 0.5, 1, 9}, {1.5, 0.5, 1.5, 0.5, 1, 0}, {0.5, 0.5, 1.5, 0.5, 1, 3}};
-  const ExpectedWork e = expectedWork({{0, 1, 0, 1}, {1, 2, 0, 1}}, sample);  // x0, x1, y0, y1
+  const ExpectedWork e =
+      estimateAreas({{0, 1, 0, 1}, {1, 2, 0, 1}}, sample, LoadMetric::Rays).expected;  // x0, x1, y0, y1
   // A split ray counts whole in each area; of its work, the one (its message and walk set-up) counts whole in
   // each too, its steps and tests by the length in each.
   EXPECT_DOUBLE_EQ(e.segments[0], 4 * 2);
