@@ -14,6 +14,7 @@ void driveNodeThread(node::LogicalProcessor<Real>& node, Interconnect& interconn
   using Clock = std::chrono::steady_clock;
   for (;;) {
     const node::Step step = node.step();
+    interconnect.ringNeighbours(id);
     if (step == node::Step::Terminated) return;
     if (step == node::Step::Worked) continue;
     const auto start = Clock::now();

@@ -19,12 +19,30 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
  public:
   using Message = node::BasicRayMessage<Real>;
   Endpoint(SharedMemoryInterconnect& machine, int id)
-      : machine_(machine), id_(id), sender_(machine.channel_.sender(id)) {
-    for (int n : machine.regions_.neighbours(id)) incoming_.push_back(machine.queue(n, id));
+      : machine_(machine),
+        id_(id),
+        neighbours_(machine.regions_.neighbours(id)),
+        sender_(machine.channel_.sender(id)) {
+    for (int n : neighbours_) incoming_.push_back(machine.queue(n, id));
+    toRing_.assign(neighbours_.size(), false);
   }
 
   std::size_t trySend(int neighbour, std::span<const Message> messages) override {
-    return machine_.queue(id_, neighbour)->tryPushN(messages);
+    const std::size_t slot = machine_.regions_.neighbourSlot(id_, neighbour);
+    const std::size_t sent = machine_.outgoing_[id_][slot]->tryPushN(messages);
+    if (sent > 0 && !toRing_[slot]) {
+      toRing_[slot] = true;
+      pushedTo_.push_back(slot);
+    }
+    return sent;
+  }
+  // Wakes the neighbours sent rays since the last call, if they sleep.
+  void ringNeighbours() {
+    for (std::size_t slot : pushedTo_) {
+      machine_.bells_[neighbours_[slot]]->ring();
+      toRing_[slot] = false;
+    }
+    pushedTo_.clear();
   }
   bool canSend(int neighbour) const override { return machine_.queue(id_, neighbour)->hasSpace(); }
   std::size_t receive(std::span<Message> into) override {
@@ -63,9 +81,12 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
  private:
   SharedMemoryInterconnect& machine_;
   int id_;
+  const std::vector<int>& neighbours_;  // by slot
   ContributionChannel::Sender sender_;
   std::vector<RayQueue*> incoming_;
   std::size_t next_ = 0;
+  std::vector<bool> toRing_;           // per neighbour slot: in pushedTo_
+  std::vector<std::size_t> pushedTo_;  // the slots of the neighbours sent rays since the last ring
 };
 
 template <class Real>
@@ -76,7 +97,10 @@ SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& 
       backlogRelease_(std::int64_t(node::scheduling::machineBacklogRelease(backlogLimit))),
       bells_([&] {
         std::vector<std::unique_ptr<Doorbell>> bells;
-        for (int p = 0; p < regions.processors(); ++p) bells.push_back(std::make_unique<Doorbell>());
+        // Rung once per step, not per ray (ringNeighbours): the ringer's fence costs little, and a
+        // processor going to sleep, which 64 of them on two cores do often, pays no membarrier.
+        for (int p = 0; p < regions.processors(); ++p)
+          bells.push_back(std::make_unique<Doorbell>(FenceMode::kSymmetric));
         return bells;
       }()),
       channel_(std::size_t(regions.processors()),
@@ -88,9 +112,10 @@ SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& 
   outgoing_.resize(std::size_t(processors));
   for (int p = 0; p < processors; ++p) {
     mailboxes_.push_back(std::make_unique<Mailbox>());
-    for (int n : regions.neighbours(p))
-      outgoing_[p].push_back(std::make_unique<RayQueue>(SpscOptions{
-          .capacity = queueCapacity, .consumerBell = bells_[n].get(), .producerBell = bells_[p].get()}));
+    // No consumer bell: a FIFO's consumer is woken once per step of its producer (ringNeighbours).
+    for (std::size_t k = 0; k < regions.neighbours(p).size(); ++k)
+      outgoing_[p].push_back(std::make_unique<RayQueue>(
+          SpscOptions{.capacity = queueCapacity, .consumerBell = nullptr, .producerBell = bells_[p].get()}));
   }
   for (int p = 0; p < processors; ++p) endpoints_.push_back(std::make_unique<Endpoint>(*this, p));
 }
@@ -101,6 +126,11 @@ SharedMemoryInterconnect<Real>::~SharedMemoryInterconnect() = default;
 template <class Real>
 node::BasicTransport<Real>& SharedMemoryInterconnect<Real>::endpoint(int processor) {
   return *endpoints_[processor];
+}
+
+template <class Real>
+void SharedMemoryInterconnect<Real>::ringNeighbours(int processor) {
+  endpoints_[processor]->ringNeighbours();
 }
 
 template <class Real>
