@@ -27,11 +27,12 @@ inline Face opposite(Face face) {
   return face;
 }
 
+// BasicRayMessage::ahead when no hit travels with the ray.
+inline constexpr std::uint32_t kNothingAhead = 0xffffffffu;
+
 // Ray state is in the precision Real of the render (--precision): 80 bytes in float, 128 in double. tEnter
 // and transmission stay double: tEnter is where the sender's walk (in double) ended, and the reference
 // multiplies transmissions in double, so every chain of processors must too.
-inline constexpr std::uint32_t kNothingAhead = 0xffffffffu;
-
 template <class Real>
 struct BasicRayMessage {
   core::BasicTracedRay<Real> ray;
