@@ -311,21 +311,7 @@ Hit BasicBvh<Real>::closestHit(const BasicRay<Real>& ray, TraceCounters& counter
 template <class Real>
 double BasicBvh<Real>::transmission(const BasicRay<Real>& ray, TraceCounters& counters,
                                     std::vector<Hit>& crossed) const {
-  crossed.clear();
-  bool blocked = false;
-  traverse(ray, ray.tMin, ray.tMax, counters, [&](std::uint32_t object) {
-    countTest(counters, scene_.objects[object]);
-    const double t = nearestHit(scene_.objects[object], ray, ray.tMax);
-    if (t == kInfinity) return true;
-    if (!shading_.transmissive(object)) {
-      blocked = true;
-      crossed.assign(1, Hit{t, object});  // the blocker, for the caller's shadow cache
-      return false;                       // an opaque object: no light, whatever else lies on the way
-    }
-    crossed.push_back(Hit{t, object});
-    return true;
-  });
-  return blocked ? 0.0 : transmissionThrough(1.0, crossed, shading_);
+  return transmission(ray, counters, crossed, [](std::uint32_t) { return true; });
 }
 
 template class BasicBvh<float>;

@@ -9,6 +9,7 @@
 #include "core/box.h"
 #include "core/intersect.h"
 #include "core/trace_stats.h"
+#include "core/transmission.h"
 #include "core/whitted.h"
 
 namespace raycube::core {
@@ -53,6 +54,10 @@ class BasicBvh {
 
   Hit closestHit(const BasicRay<Real>& ray, TraceCounters& counters) const;
   double transmission(const BasicRay<Real>& ray, TraceCounters& counters, std::vector<Hit>& crossed) const;
+  // The same over the objects held(object) accepts only: the others are passed over untested, as if absent.
+  template <class Held>
+  double transmission(const BasicRay<Real>& ray, TraceCounters& counters, std::vector<Hit>& crossed,
+                      Held&& held) const;
   std::size_t nodeCount() const { return nodes_.size(); }
   // Front-to-back traversal: visit(object) for each object whose box the ray meets within [tFrom, tLimit],
   // until it returns false. tLimit is read again at every node, so visit may lower it (the best hit so far);
@@ -150,6 +155,28 @@ void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real&
     for (int k : {1 - nearFirst, nearFirst})
       if (hit[k]) stack[top++] = Entry{children[k], tChild[k]};
   }
+}
+
+template <class Real>
+template <class Held>
+double BasicBvh<Real>::transmission(const BasicRay<Real>& ray, TraceCounters& counters,
+                                    std::vector<Hit>& crossed, Held&& held) const {
+  crossed.clear();
+  bool blocked = false;
+  traverse(ray, ray.tMin, ray.tMax, counters, [&](std::uint32_t object) {
+    if (!held(object)) return true;
+    countTest(counters, scene_.objects[object]);
+    const double t = nearestHit(scene_.objects[object], ray, ray.tMax);
+    if (t == kInfinity) return true;
+    if (!shading_.transmissive(object)) {
+      blocked = true;
+      crossed.assign(1, Hit{t, object});  // the blocker, for the caller's shadow cache
+      return false;                       // an opaque object: no light, whatever else lies on the way
+    }
+    crossed.push_back(Hit{t, object});
+    return true;
+  });
+  return blocked ? 0.0 : transmissionThrough(1.0, crossed, shading_);
 }
 
 }  // namespace raycube::core

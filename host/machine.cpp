@@ -358,10 +358,10 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   Laps laps;
   const core::Whitted shading(scene, settings.shading);
   // The sampling's BVH of the whole scene builds on every core while this thread computes the objects'
-  // boxes; its shape then serves the spatial queries and the processors' database BVHs.
-  std::future<std::unique_ptr<const core::Bvh>> sampled = std::async(std::launch::async, [&] {
-    return std::make_unique<const core::Bvh>(scene, shading, core::Bvh::BuildOn::EveryCore);
-  });
+  // boxes; its shape then serves the spatial queries and the processors' BVHs, and the tree itself their
+  // light rays traced where they start.
+  std::future<std::shared_ptr<const node::SceneTree>> sampled = std::async(
+      std::launch::async, [&] { return std::make_shared<const node::SceneTree>(scene, settings.shading); });
   // The objects' world boxes: for where the scene lies (unless rays travel on to the screen's edge, as the
   // emulated paper's machine's do) and for the light volumes; their eye boxes for the regions.
   const bool lightVolumes = machine.lightRays != node::LightRayMode::Messages;
@@ -374,17 +374,17 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   std::vector<node::EyeBox> boxes;
   boxes.reserve(scene.objects.size());
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
-  const std::unique_ptr<const core::Bvh> wholeScene = sampled.get();
+  const std::shared_ptr<const node::SceneTree> wholeScene = sampled.get();
   // The spatial queries take the BVH's shape on the other core while this one sub-samples and partitions.
   std::future<SpatialQueries> queries = std::async(std::launch::async, [&] {
-    auto shape = std::make_shared<const core::BvhShape>(wholeScene->shape());
+    auto shape = std::make_shared<const core::BvhShape>(wholeScene->bvh.shape());
     // The two trees side by side: sombrero 3's pruning waited 13-25 ms for them, built one after the other.
     std::future<BoxTree> inWorld =
         std::async(std::launch::async, [&] { return BoxTree(worldBoxes, *shape); });
     BoxTree inEyeFrame(eyeFrameBoxesOf(boxes), *shape);
     return SpatialQueries{shape, inWorld.get(), std::move(inEyeFrame)};
   });
-  LoadSample load = subsampleLoad(*wholeScene, view, shading, machine.subsampleWindow, machine.loadMetric,
+  LoadSample load = subsampleLoad(wholeScene->bvh, view, shading, machine.subsampleWindow, machine.loadMetric,
                                   lightVolumes, sceneBounds);
   seconds.sampling = laps.next();
   node::MachineContext context{view, settings.shading, partition(view, load, machine), std::move(sceneBounds)};
@@ -393,10 +393,13 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   const SpatialQueries spatial = queries.get();
   std::vector<node::NodeSetup> setups = pruneDatabase(shading, view, context.regions, context.lines(), boxes,
                                                       spatial.inEyeFrame, spatial.inWorld, machine);
-  // The processors' BVHs keep the sampling tree's shape (NodeSetup::sceneShape), but for the emulated
-  // machine, whose costs count the box tests of trees built anew.
+  // The processors' BVHs keep the sampling tree's shape (NodeSetup::sceneShape) and their light rays use the
+  // tree, but for the emulated machine, whose costs count the box tests of trees built anew.
   if (!machine.emulate)
-    for (node::NodeSetup& setup : setups) setup.sceneShape = spatial.shape;
+    for (node::NodeSetup& setup : setups) {
+      setup.sceneShape = spatial.shape;
+      setup.sceneTree = wholeScene;
+    }
   seconds.pruning = laps.next();
   return {std::move(load), std::move(context), std::move(setups), {}};
 }

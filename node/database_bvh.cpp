@@ -55,4 +55,21 @@ template std::shared_ptr<const DatabaseBvh<float>> sharedBvhOf(const std::shared
 template std::shared_ptr<const DatabaseBvh<double>> sharedBvhOf(const std::shared_ptr<const RegionDatabase>&,
                                                                 const core::ShadingOptions&, const core::BvhShape*);
 
+template <class Real>
+LightRayTree<Real>::LightRayTree(const std::shared_ptr<const RegionDatabase>& database,
+                                 const core::ShadingOptions& options, const core::BvhShape* sceneShape,
+                                 std::shared_ptr<const SceneTree> sceneTree) {
+  if (std::is_same_v<Real, double> && sceneTree != nullptr &&
+      database->inPlace == &sceneTree->shading.scene()) {
+    sceneTree_ = std::move(sceneTree);
+    held_.assign(database->inPlace->objects.size(), false);
+    for (std::uint32_t o : database->globalIds) held_[o] = true;
+    return;
+  }
+  own_ = sharedBvhOf<Real>(database, options, sceneShape);
+}
+
+template class LightRayTree<float>;
+template class LightRayTree<double>;
+
 }  // namespace raycube::node

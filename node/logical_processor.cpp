@@ -56,7 +56,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
     regionBvh_ = std::make_unique<const core::BasicBvh<Real>>(core::bvhOver<Real>(
         scene_, shading_, setup_.objects, setup_.sceneShape.get(), setup_.database->wholeIdOf()));
   if (setup_.lightRays != LightRayMode::Messages)
-    databaseBvh_ = sharedBvhOf<Real>(setup_.database, context.shading, setup_.sceneShape.get());
+    lightRayTree_.emplace(setup_.database, context.shading, setup_.sceneShape.get(), setup_.sceneTree);
   stats_.lightObjects = setup_.lightObjects;
   stats_.extraLightObjects = setup_.extraLightObjects;
 }
@@ -320,7 +320,7 @@ bool LogicalProcessor<Real>::startsInLightSourceBox(const core::Vec3& origin) co
 template <class Real>
 double LogicalProcessor<Real>::traceWhereItStarts(const TracedRay& ray) {
   ++stats_.lightRaysTracedLocally;
-  return core::lightRayTransmission(shading_, databaseBvh_->bvh, ray, stats_.processed, lightRayScratch_);
+  return core::lightRayTransmission(shading_, *lightRayTree_, ray, stats_.processed, lightRayScratch_);
 }
 
 template <class Real>

@@ -54,6 +54,9 @@ struct NodeSetup {
   // built anew (node/database_bvh.h). None across address spaces (an MPI rank builds its own), nor when
   // emulating, whose costs count box tests.
   std::shared_ptr<const core::BvhShape> sceneShape;
+  // The host's BVH over the whole scene, for processors reading it in place: their light rays traced where
+  // they start use it (LightRayTree). None where sceneShape is none.
+  std::shared_ptr<const SceneTree> sceneTree;
 };
 
 struct NodeStats {
@@ -144,10 +147,10 @@ class LogicalProcessor {
   SampleRect area_;
   CellStructure structure_;  // Paper or Bvh
   RegionCells cells_;
-  // Every object the processor holds, in one BVH, for light rays traced where they start (3.7.2). Holding
+  // Every object the processor holds, in one tree, for light rays traced where they start (3.7.2). Holding
   // more than a query needs costs it nothing but box tests: an object off a light ray's segment never has a
-  // hit on it. Shared with the processors holding the same database (see sharedBvhOf).
-  std::shared_ptr<const DatabaseBvh<Real>> databaseBvh_;
+  // hit on it.
+  std::optional<LightRayTree<Real>> lightRayTree_;
   // With CellStructure::Bvh, the region's own objects, the only ones a hit inside the region can be on.
   std::unique_ptr<const core::BasicBvh<Real>> regionBvh_;
   long long nextPrimary_ = 0;

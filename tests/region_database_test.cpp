@@ -1,6 +1,7 @@
 // What a processor holds (node/region_database.h): the union of its lists, once each and in the scene's
-// order; its lists rewritten into local indices naming the same objects; and one BVH per database, shared by
-// every processor holding that very database (node/database_bvh.h).
+// order; its lists rewritten into local indices naming the same objects; one BVH per database, shared by
+// every processor holding that very database, and in place the host's tree over what it holds
+// (node/database_bvh.h).
 #include "node/region_database.h"
 
 #include <gtest/gtest.h>
@@ -120,6 +121,38 @@ TEST_F(RegionDatabaseTest, ReadInPlaceItNamesTheScenesObjectsByTheirOwnIndices) 
     EXPECT_EQ(copy->globalIds[b.object], expected);
     EXPECT_EQ(a.t, b.t);
   }
+}
+
+// A processor reading the scene in place answers its light rays with the host's tree over the whole scene,
+// passing over the objects it does not hold: the answers of a tree over its database (a copy's), and a
+// float machine, whose rays the host's double tree cannot take, keeps a tree of its own.
+TEST_F(RegionDatabaseTest, LightRaysInPlaceMeetOnlyTheHeldObjectsOfTheHostsTree) {
+  const std::vector<std::uint32_t> held{1, 4};  // the spheres at x = -3 and x = 3
+  auto inPlace = std::make_shared<const RegionDatabase>(regionDatabaseIn(scene_, scene_.features(), held));
+  auto copy = std::make_shared<const RegionDatabase>(regionDatabaseOf(scene_, held));
+  const auto hostTree = std::make_shared<const SceneTree>(scene_, core::ShadingOptions{});
+  const LightRayTree<double> overHostTree(inPlace, core::ShadingOptions{}, nullptr, hostTree);
+  const LightRayTree<double> overCopy(copy, core::ShadingOptions{}, nullptr, hostTree);  // not in place
+  const LightRayTree<float> inFloat(inPlace, core::ShadingOptions{}, nullptr, hostTree);
+  core::TraceCounters counters;
+  std::vector<core::Hit> crossed;
+  // Segments along the row: between the unheld spheres at -1 and 1 (light passes), through the unheld one
+  // at -5 and the held one at -3 (blocked by -3), from x = -2 to x = 2.5 (no sphere held on the way).
+  for (const auto& [x0, x1, expected, blocker] :
+       {std::tuple{-2.0, 2.0, 1.0, 0u}, std::tuple{-10.0, -2.0, 0.0, 1u}, std::tuple{-2.0, 2.4, 1.0, 0u},
+        std::tuple{2.0, 10.0, 0.0, 4u}}) {
+    const core::Ray ray{{x0, 0, 0}, {1, 0, 0}, 0, x1 - x0};
+    EXPECT_EQ(overHostTree.transmission(ray, counters, crossed), expected) << x0 << " to " << x1;
+    if (expected == 0) {
+      ASSERT_EQ(crossed.size(), 1u);
+      EXPECT_EQ(crossed[0].object, blocker);  // a global index: the scene is read in place
+    }
+    EXPECT_EQ(overCopy.transmission(ray, counters, crossed), expected) << x0 << " to " << x1;
+    const core::BasicRay<float> floatRay{{float(x0), 0, 0}, {1, 0, 0}, 0, float(x1 - x0)};
+    EXPECT_EQ(inFloat.transmission(floatRay, counters, crossed), expected) << x0 << " to " << x1;
+  }
+  // The whole tree, unfiltered, is blocked by the unheld spheres too.
+  EXPECT_EQ(hostTree->bvh.transmission(core::Ray{{-2, 0, 0}, {1, 0, 0}, 0, 4}, counters, crossed), 0.0);
 }
 
 }  // namespace
