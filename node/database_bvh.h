@@ -2,7 +2,8 @@
 // One BVH over everything a processor holds (its RegionDatabase), shared by every processor of this address
 // space holding the very same database: when the ground polygon's light volumes reach the whole scene, 64
 // processors hold the same objects, and build and keep one tree instead of 64. The database travels as a
-// value between address spaces (an MPI rank builds its own tree); only the tree is shared here.
+// value between address spaces (an MPI rank builds its own tree); only the tree is shared here. Processors
+// reading the host's scene in place use the host's tree instead, for their light rays (LightRayTree).
 #include <memory>
 #include <type_traits>
 #include <vector>
