@@ -356,7 +356,6 @@ struct SpatialQueries {
 HostPreparation prepare(const core::Scene& scene, const core::View& view, const RenderSettings& settings,
                         const MachineSettings& machine, Progress& progress, PreprocessingSeconds& seconds) {
   Laps laps;
-  const core::Whitted shading(scene, settings.shading);
   // The sampling's BVH of the whole scene builds on every core while this thread computes the objects'
   // boxes; its shape then serves the spatial queries and the processors' BVHs, and the tree itself their
   // light rays traced where they start.
@@ -375,6 +374,7 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   boxes.reserve(scene.objects.size());
   for (const core::Object& o : scene.objects) boxes.push_back(node::eyeBoxOf(o, view, sceneExtent));
   const std::shared_ptr<const node::SceneTree> wholeScene = sampled.get();
+  const core::Whitted& shading = wholeScene->shading;  // the tree's: the scene with the run's options
   // The spatial queries take the BVH's shape on the other core while this one sub-samples and partitions.
   std::future<SpatialQueries> queries = std::async(std::launch::async, [&] {
     auto shape = std::make_shared<const core::BvhShape>(wholeScene->bvh.shape());
