@@ -56,7 +56,8 @@ const std::map<std::string, node::LightRayMode> kLightRays{{"messages", node::Li
 const std::map<std::string, node::CellStructure> kCellStructures{{"auto", node::CellStructure::Auto},
                                                                   {"paper", node::CellStructure::Paper},
                                                                   {"bvh", node::CellStructure::Bvh}};
-const std::map<std::string, Balance> kBalances{{"uniform", Balance::Uniform}, {"bsp", Balance::Bsp}};
+const std::map<std::string, Balance> kBalances{
+    {"auto", Balance::Auto}, {"uniform", Balance::Uniform}, {"bsp", Balance::Bsp}};
 const std::map<std::string, LoadMetric> kLoadMetrics{{"rays", LoadMetric::Rays}, {"cost", LoadMetric::Cost}};
 const std::map<std::string, core::Precision> kPrecisions{{"float", core::Precision::Float},
                                                          {"double", core::Precision::Double}};
@@ -91,7 +92,7 @@ struct RenderCommand {
   std::string reportPath;
   std::string lightRays = "pyramid";
   std::string cells = "auto";
-  std::string balance = "bsp";
+  std::string balance = "auto";
   std::string loadMetric = "cost";
   std::string emulate;
   std::string platformPath;
@@ -472,9 +473,10 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
       ->check(CLI::Range(0, 1024));
   render->add_option("--sampling", cmd.sampling, "centers (one ray per pixel) | corners (SPD rule 6)")
       ->transform(CLI::IsMember(keysOf(kSamplings), CLI::ignore_case));
-  if (procsAsGrid) render->add_option("--procs", cmd.procs,
-                     "Logical processors as RxC (rows x columns), default 4x4; with --balance bsp only R*C "
-                     "counts (at most 1024)");
+  if (procsAsGrid)
+    render->add_option("--procs", cmd.procs,
+                       "Logical processors as RxC (rows x columns), default 4x4; with --balance bsp only R*C "
+                       "counts (at most 1024), with auto R x C is the grid it weighs against the BSP");
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
   render
@@ -493,7 +495,12 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
                    "messages (light rays travel) | cone | pyramid (traced where they start, 3.7.2)")
       ->transform(CLI::IsMember(keysOf(kLightRays), CLI::ignore_case));
   render
-      ->add_option("--balance", cmd.balance, "uniform (R x C grid, 3.1) | bsp (equal estimated loads, 3.7.1)")
+      ->add_option(
+          "--balance", cmd.balance,
+          "uniform (R x C grid, 3.1) | bsp (equal estimated loads, 3.7.1) | auto (whichever the "
+          "sub-sampled estimate says finishes first on the cores the processors share: the BSP where "
+          "each has its own, as emulated or on MPI; on threads sharing few cores, often the grid, "
+          "which splits fewer rays into messages)")
       ->transform(CLI::IsMember(keysOf(kBalances), CLI::ignore_case));
   render
       ->add_option("--load-metric", cmd.loadMetric, "rays (the paper's) | cost (rays weighted by their work)")

@@ -10,19 +10,19 @@
 #include <stdexcept>
 #include <thread>
 
-#include "host/framebuffer.h"
 #include "core/intersect.h"
-#include "host/bsp_partition.h"
+#include "host/box_tree.h"
+#include "host/framebuffer.h"
 #include "host/hypercube_mapping.h"
-#include "host/machine_engine.h"
+#include "host/light_volume.h"
 #include "host/machine_checks.h"
+#include "host/machine_engine.h"
 #include "host/machine_progress.h"
 #include "host/parallel_for.h"
-#include "node/scheduling.h"
 #include "host/precision_dispatch.h"
 #include "host/progress.h"
-#include "host/box_tree.h"
-#include "host/light_volume.h"
+#include "host/screen_partition.h"
+#include "node/scheduling.h"
 
 namespace raycube::host {
 namespace {
@@ -30,13 +30,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// 3.1: pixel areas with (nearly) equal sample counts.
-std::vector<int> evenCuts(int samples, int parts) {
-  std::vector<int> cuts;
-  for (int k = 0; k <= parts; ++k) cuts.push_back(int((long long)samples * k / parts));
-  return cuts;
 }
 
 // Bounds of x over {x in [lo, hi], a z <= x <= b z, z in [z0, z1]} (a, b may be infinite).
@@ -274,15 +267,12 @@ void recordEmbedding(HypercubeEmbedding embedding, MachineReport& out) {
   out.preprocessing.mapping = embedding.seconds;
 }
 
-// Phase 2 (3.1, 3.7.1): a uniform grid, or a BSP of the sub-sampled load into areas of equal estimate.
-node::RegionMap partition(const core::View& view, const LoadSample& load, const MachineSettings& machine) {
-  const node::ScreenLines lines(view);
-  if (machine.balance == Balance::Bsp)
-    return node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
-                                        machine.loadMetric),
-                           lines);
-  return node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns), evenCuts(view.samplesY(), machine.rows),
-                               lines);
+// The cores the processors share, for Balance::Auto: one each where every processor has a CPU of its own (the
+// emulated iPSC, MPI ranks); the host's, at most one per processor, where they are its threads.
+int coresSharedBy(const MachineSettings& machine) {
+  const int processors = machine.rows * machine.columns;
+  if (machine.emulate || machine.mpi) return processors;
+  return std::clamp(int(std::thread::hardware_concurrency()), 1, processors);
 }
 
 // The host's frame buffer (3.5.1), counting what it accumulates.
@@ -327,6 +317,8 @@ void reportRun(MachineRun run, const std::vector<double>& estimatedLoad, const L
 // the uniform grid is only measured), partition the screen, prune the database per region and light volume.
 struct HostPreparation {
   LoadSample load;
+  Balance balance;  // the partition made
+  std::optional<PartitionForecast> forecast;
   node::MachineContext context;
   std::vector<node::NodeSetup> setups;
   AreaEstimates estimates;  // what the sub-sample puts in each region, once the regions are launched
@@ -387,7 +379,8 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   LoadSample load = subsampleLoad(wholeScene->bvh, view, shading, machine.subsampleWindow, machine.loadMetric,
                                   lightVolumes, sceneBounds);
   seconds.sampling = laps.next();
-  node::MachineContext context{view, settings.shading, partition(view, load, machine), std::move(sceneBounds)};
+  ScreenPartition partition = partitionScreen(view, load, machine, coresSharedBy(machine));
+  node::MachineContext context{view, settings.shading, std::move(partition.regions), std::move(sceneBounds)};
   seconds.partitioning = laps.next();
   progress.phase("pruning");
   const SpatialQueries spatial = queries.get();
@@ -401,13 +394,7 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
       setup.sceneTree = wholeScene;
     }
   seconds.pruning = laps.next();
-  return {std::move(load), std::move(context), std::move(setups), {}};
-}
-
-std::vector<node::SampleRect> areasOf(const node::RegionMap& regions) {
-  std::vector<node::SampleRect> areas;
-  for (int p = 0; p < regions.processors(); ++p) areas.push_back(regions.areaOf(p));
-  return areas;
+  return {std::move(load), partition.balance, partition.forecast, std::move(context), std::move(setups), {}};
 }
 
 // When the run started, when the engine was given the processors, and when the synthesis phase started
@@ -426,7 +413,7 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
                   SynthesisClock& clock, const std::function<void()>& alongsideSynthesis) {
   progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
   clock.launch = Clock::now();
-  host.estimates = estimateAreas(areasOf(host.context.regions), host.load, machine.loadMetric);
+  host.estimates = estimateAreas(host.context.regions.areas(), host.load, machine.loadMetric);
   const MachineProgress work(host.estimates.expected);
   EngineHooks hooks;
   hooks.host = &accumulator;
@@ -455,17 +442,21 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   MachineReport local;
   MachineReport& out = report ? *report : local;
   out.settings = machine;
+  out.balanceAsked = machine.balance;
   HostPreparation host = prepare(scene, view, settings, machine, progress, out.preprocessing);
+  out.settings.balance = host.balance;
+  out.partitionForecast = host.forecast;
 
   // Only the emulated machine's links need the embedding; otherwise it is worked out during the synthesis, if
   // the report wants it.
   std::future<HypercubeEmbedding> embedding;
   std::function<void()> alongsideSynthesis = [] {};
   if (machine.emulate)
-    recordEmbedding(embedInHypercube(host.context.regions, machine), out);
+    recordEmbedding(embedInHypercube(host.context.regions, out.settings), out);
   else if (machine.mapHypercube)
     alongsideSynthesis = [&] {
-      embedding = std::async(std::launch::async, [&] { return embedInHypercube(host.context.regions, machine); });
+      embedding = std::async(std::launch::async,
+                             [&] { return embedInHypercube(host.context.regions, out.settings); });
     };
   Accumulator accumulator(view);
   MachineRun run =

@@ -19,14 +19,23 @@
 namespace raycube::host {
 
 enum class Balance : std::uint8_t {
+  Auto,     // whichever of the two the sub-sampled estimate says finishes first (host/screen_partition.h)
   Uniform,  // 3.1: an R x C grid of equal pixel areas
   Bsp,      // 3.7.1: a BSP of the screen into areas of equal estimated load
+};
+
+// What chose Balance::Auto's partition: the estimated span of each, in the load metric (the sub-sampled
+// loads scaled to the image): the busiest processor's load or the whole load over the cores the processors
+// share, whichever is longer.
+struct PartitionForecast {
+  int cores = 0;
+  double bspSpan = 0, uniformSpan = 0;
 };
 
 struct MachineSettings {
   int rows = 4;
   int columns = 4;
-  Balance balance = Balance::Bsp;  // with Bsp only rows x columns (the processor count) matters
+  Balance balance = Balance::Auto;  // with Bsp only rows x columns (the processor count) matters
   int subsampleWindow = 8;         // 3.7.1: one sub-sampled pixel per w x w window
   LoadMetric loadMetric = LoadMetric::Cost;
   std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
@@ -110,7 +119,9 @@ struct PreprocessingSeconds {
 };
 
 struct MachineReport {
-  MachineSettings settings;
+  MachineSettings settings;  // as run: its balance the partition made (Uniform or Bsp)
+  Balance balanceAsked = Balance::Auto;
+  std::optional<PartitionForecast> partitionForecast;  // Auto's, where both partitions fitted
   PreprocessingSeconds preprocessing;
   // Figure 15: per processor, the load estimated from the sub-sampled rays (scaled to the image), in the
   // metric used to partition; and how many rays were sub-sampled.

@@ -9,16 +9,31 @@
 
 namespace raycube::host {
 
-void requireMachineFits(const MachineSettings& machine, const core::View& view) {
-  const bool gridFits = machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
+PartitionsFitting partitionsFitting(const MachineSettings& machine, const core::View& view) {
   const long long processors = (long long)machine.rows * machine.columns;
-  const bool bspFits = processors <= (long long)view.samplesX() * view.samplesY();
-  if (machine.columns < 1 || machine.rows < 1 || !(machine.balance == Balance::Bsp ? bspFits : gridFits))
+  const bool some = machine.columns >= 1 && machine.rows >= 1;
+  PartitionsFitting fits;
+  fits.grid = some && machine.columns <= view.samplesX() && machine.rows <= view.samplesY();
+  fits.bspSamples = some && processors <= (long long)view.samplesX() * view.samplesY();
+  fits.bspMapped = processors <= kMaxMappedVertices;
+  return fits;
+}
+
+void requireMachineFits(const MachineSettings& machine, const core::View& view) {
+  const PartitionsFitting fits = partitionsFitting(machine, view);
+  const long long processors = (long long)machine.rows * machine.columns;
+  const bool samplesFit = machine.balance == Balance::Bsp       ? fits.bspSamples
+                          : machine.balance == Balance::Uniform ? fits.grid
+                                                                : fits.grid || fits.bspSamples;
+  if (!samplesFit)
     throw std::invalid_argument(
         fmt::format("--procs {}x{}: every processor needs at least one sample (and, on a "
                     "uniform grid, one sample row and column) of the {}x{} sample grid",
                     machine.rows, machine.columns, view.samplesX(), view.samplesY()));
-  if (machine.balance == Balance::Bsp && processors > kMaxMappedVertices)
+  const bool mappingFits = machine.balance == Balance::Bsp    ? fits.bspMapped
+                           : machine.balance == Balance::Auto ? fits.grid || fits.bspMapped
+                                                              : true;
+  if (!mappingFits)
     throw std::invalid_argument(
         fmt::format("--procs {}x{}: --balance bsp maps at most {} processors onto the hypercube, got {} "
                     "(use fewer processors or --balance uniform)",

@@ -111,6 +111,7 @@ std::vector<SubsampleRow> measureSubsampling(const core::Scene& scene, const Ren
     machine.rows = 1;
     machine.columns = processors;
     machine.subsampleWindow = window;
+    machine.balance = Balance::Bsp;  // the balance a window buys is the BSP's
     SubsampleRow row;
     row.window = window;
     std::vector<double> times;

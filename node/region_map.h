@@ -27,6 +27,7 @@ class RegionMap {
   int gridColumns() const { return gridColumns_; }  // > 0: built as a uniform grid of that many columns
   const ScreenLines& lines() const { return lines_; }
   const SampleRect& areaOf(int id) const { return areas_[id]; }
+  const std::vector<SampleRect>& areas() const { return areas_; }
   int ownerOfSample(int sx, int sy) const { return owner_[std::size_t(sy) * samplesX_ + sx]; }
 
   // The processor whose region holds the ray at t (front part only).

@@ -309,9 +309,12 @@ TEST_F(Cli, UnwritableOutputsFailBeforeRendering) {
   EXPECT_FALSE(fs::exists(dir_ / "x.jpg"));
 }
 
-// The BSP's hypercube mapping places at most 1024 processors: say so before any work, not after gigabytes.
+// The BSP's hypercube mapping places at most 1024 processors: say so before any work, not after gigabytes;
+// by default, when the uniform grid, the other partition weighed, cannot cut the image either.
 TEST_F(Cli, TooManyBspProcessorsFailAtOnce) {
-  expectOneLineError("render --balls 1 --size 64x64 --procs 64x64 -q -o x.png", {"--procs 64x64", "1024"});
+  expectOneLineError("render --balls 1 --size 64x64 --procs 64x64 --balance bsp -q -o x.png",
+                     {"--procs 64x64", "1024"});
+  expectOneLineError("render --balls 1 --size 2000x40 --procs 64x20 -q -o x.png", {"--procs 64x20", "1024"});
 }
 
 // Without --procs the default 4x4 grid shrinks to fit the image; the user never gave --procs 4x4.

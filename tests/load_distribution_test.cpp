@@ -10,6 +10,7 @@
 #include "host/bsp_partition.h"
 #include "host/load_estimate.h"
 #include "host/machine_report.h"
+#include "host/screen_partition.h"
 #include "host/sequential_renderers.h"
 #include "machine_test_support.h"
 #include "node/region_map.h"
@@ -229,6 +230,100 @@ TEST(LoadEstimate, RaysLeavingTheSceneStillWeigh) {
     EXPECT_EQ(with.segments.size(), without.segments.size());
   }
   EXPECT_EQ(subsampleLoad(scene, away, shading, 4, LoadMetric::Rays, true, bounds).segments.size(), 64u);
+}
+
+// 2,000 rays crossing the top-left quarter of a 100 x 100 screen's 4 x 4 grid cells, [0, 25) x [0, 25), and
+// nothing elsewhere: the grid holds them all in one area, whole; the BSP spreads them over its processors,
+// cutting them.
+LoadSample raysInOneCorner() {
+  LoadSample sample;
+  for (int i = 0; i < 2000; ++i)
+    sample.segments.push_back(ScreenSegment{1.0 + i % 23, 1.0 + i % 19, 24.0 - i % 17, 24.0 - i % 13, 1});
+  return sample;
+}
+
+MachineSettings gridOf(int rows, int columns, Balance balance) {
+  MachineSettings m;
+  m.rows = rows;
+  m.columns = columns;
+  m.balance = balance;
+  m.loadMetric = LoadMetric::Rays;
+  return m;
+}
+
+TEST(ScreenPartition, TheSpanIsTheBusiestAreaOrTheWholeLoadOverTheCores) {
+  EXPECT_DOUBLE_EQ(estimatedSpan({1, 2, 3, 10}, 1), 16);
+  EXPECT_DOUBLE_EQ(estimatedSpan({1, 2, 3, 10}, 2), 10);
+  EXPECT_DOUBLE_EQ(estimatedSpan({4, 4, 4, 4}, 2), 8);
+  EXPECT_DOUBLE_EQ(estimatedSpan({4, 4, 4, 4}, 4), 4);
+  EXPECT_DOUBLE_EQ(estimatedSpan({}, 2), 0);
+}
+
+// Auto makes the partition whose estimated span is shorter: the BSP where each processor has a core (the
+// busiest sets the pace), the grid where one core runs them all (the cut rays' pieces are extra work).
+TEST(ScreenPartition, AutoWeighsTheCoresTheProcessorsShare) {
+  const core::Scene scene = core::makeBalls(1);
+  const core::View view(scene.camera, 100, 100, core::Sampling::Centers);
+  const LoadSample sample = raysInOneCorner();
+  const MachineSettings automatic = gridOf(4, 4, Balance::Auto);
+
+  const ScreenPartition ownCores = partitionScreen(view, sample, automatic, 16);
+  EXPECT_EQ(ownCores.balance, Balance::Bsp);
+  ASSERT_TRUE(ownCores.forecast.has_value());
+  EXPECT_DOUBLE_EQ(ownCores.forecast->uniformSpan, 2000);  // every ray in one area
+  EXPECT_LT(ownCores.forecast->bspSpan, 1000);
+  EXPECT_EQ(ownCores.regions.gridColumns(), 0);
+
+  const ScreenPartition oneCore = partitionScreen(view, sample, automatic, 1);
+  EXPECT_EQ(oneCore.balance, Balance::Uniform);
+  ASSERT_TRUE(oneCore.forecast.has_value());
+  EXPECT_EQ(oneCore.forecast->cores, 1);
+  EXPECT_DOUBLE_EQ(oneCore.forecast->uniformSpan, 2000);
+  EXPECT_GT(oneCore.forecast->bspSpan, 2000);  // the same rays, cut into more pieces
+  EXPECT_EQ(oneCore.regions.gridColumns(), 4);
+  EXPECT_EQ(oneCore.regions.areaOf(0).x1, 25);
+}
+
+// A partition asked for by name is made whatever the forecast; Auto takes the only one that fits.
+TEST(ScreenPartition, AskedByNameOrTheOnlyOneFitting) {
+  const core::Scene scene = core::makeBalls(1);
+  const core::View view(scene.camera, 100, 100, core::Sampling::Centers);
+  const LoadSample sample = raysInOneCorner();
+  const ScreenPartition bsp = partitionScreen(view, sample, gridOf(4, 4, Balance::Bsp), 1);
+  EXPECT_EQ(bsp.balance, Balance::Bsp);
+  EXPECT_FALSE(bsp.forecast.has_value());
+  const ScreenPartition uniform = partitionScreen(view, sample, gridOf(4, 4, Balance::Uniform), 16);
+  EXPECT_EQ(uniform.balance, Balance::Uniform);
+  EXPECT_FALSE(uniform.forecast.has_value());
+  // 1 x 128 columns: no grid of 100 sample columns holds them; the BSP does.
+  const ScreenPartition onlyBsp = partitionScreen(view, sample, gridOf(1, 128, Balance::Auto), 1);
+  EXPECT_EQ(onlyBsp.balance, Balance::Bsp);
+  EXPECT_FALSE(onlyBsp.forecast.has_value());
+  EXPECT_EQ(onlyBsp.regions.processors(), 128);
+}
+
+// The machine's report names the partition made and what chose it; the image is the reference's either way.
+TEST(ScreenPartition, TheReportSaysWhichPartitionAutoMade) {
+  const core::Scene scene = core::makeBalls(2);
+  const RenderSettings settings = settingsFor(32);
+  MachineSettings m;
+  m.rows = 4;
+  m.columns = 4;
+  ASSERT_EQ(m.balance, Balance::Auto);  // the default
+  MachineReport report;
+  const RenderResult result = renderMachine(scene, settings, m, &report);
+  EXPECT_TRUE(core::bitIdentical(result.image, renderReference(scene, settings).image));
+  EXPECT_EQ(report.balanceAsked, Balance::Auto);
+  ASSERT_TRUE(report.partitionForecast.has_value());
+  const PartitionForecast& f = *report.partitionForecast;
+  EXPECT_EQ(report.settings.balance, f.uniformSpan < f.bspSpan ? Balance::Uniform : Balance::Bsp);
+  EXPECT_GE(f.cores, 1);
+  EXPECT_LE(f.cores, 16);
+  const std::string table = machineTable(report);
+  EXPECT_NE(table.find("auto: "), std::string::npos) << table;
+  const nlohmann::json json = machineJson(report);
+  EXPECT_EQ(json["balanceAsked"], "auto");
+  EXPECT_EQ(json["partitionForecast"]["cores"], f.cores);
 }
 
 MachineSettings bspMachine(int processors, LoadMetric metric, int window, node::LightRayMode lights,
