@@ -321,7 +321,7 @@ struct HostPreparation {
   std::optional<PartitionForecast> forecast;
   node::MachineContext context;
   std::vector<node::NodeSetup> setups;
-  AreaEstimates estimates;  // what the sub-sample puts in each region, once the regions are launched
+  AreaEstimates estimates;  // what the sub-sample puts in each region: from the partition, or at launch
 };
 
 // The time since the last lap, and a new lap.
@@ -394,7 +394,10 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
       setup.sceneTree = wholeScene;
     }
   seconds.pruning = laps.next();
-  return {std::move(load), partition.balance, partition.forecast, std::move(context), std::move(setups), {}};
+  HostPreparation prepared{std::move(load),    partition.balance, partition.forecast,
+                           std::move(context), std::move(setups), {}};
+  if (partition.estimates) prepared.estimates = std::move(*partition.estimates);
+  return prepared;
 }
 
 // When the run started, when the engine was given the processors, and when the synthesis phase started
@@ -413,7 +416,8 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
                   SynthesisClock& clock, const std::function<void()>& alongsideSynthesis) {
   progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
   clock.launch = Clock::now();
-  host.estimates = estimateAreas(host.context.regions.areas(), host.load, machine.loadMetric);
+  if (host.estimates.loads.empty())  // not weighed while partitioning
+    host.estimates = estimateAreas(host.context.regions.areas(), host.load, machine.loadMetric);
   const MachineProgress work(host.estimates.expected);
   EngineHooks hooks;
   hooks.host = &accumulator;

@@ -19,14 +19,14 @@ std::vector<int> evenCuts(int samples, int parts) {
 ScreenPartition uniformGrid(const core::View& view, const MachineSettings& machine) {
   return {node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns),
                                 evenCuts(view.samplesY(), machine.rows), node::ScreenLines(view)),
-          Balance::Uniform, std::nullopt};
+          Balance::Uniform, std::nullopt, std::nullopt};
 }
 
 ScreenPartition equalLoads(const core::View& view, const LoadSample& load, const MachineSettings& machine) {
   return {node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
                                        machine.loadMetric),
                           node::ScreenLines(view)),
-          Balance::Bsp, std::nullopt};
+          Balance::Bsp, std::nullopt, std::nullopt};
 }
 
 }  // namespace
@@ -44,10 +44,10 @@ ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
     return equalLoads(view, load, machine);
   if (machine.balance == Balance::Uniform || !fits.bsp()) return uniformGrid(view, machine);
   ScreenPartition balanced = equalLoads(view, load, machine), grid = uniformGrid(view, machine);
-  auto span = [&](const ScreenPartition& p) {
-    return estimatedSpan(estimateAreas(p.regions.areas(), load, machine.loadMetric).loads, cores);
-  };
-  const PartitionForecast forecast{cores, span(balanced), span(grid)};
+  for (ScreenPartition* p : {&balanced, &grid})
+    p->estimates = estimateAreas(p->regions.areas(), load, machine.loadMetric);
+  const PartitionForecast forecast{cores, estimatedSpan(balanced.estimates->loads, cores),
+                                   estimatedSpan(grid.estimates->loads, cores)};
   ScreenPartition& made = forecast.uniformSpan < forecast.bspSpan ? grid : balanced;
   made.forecast = forecast;
   return std::move(made);
