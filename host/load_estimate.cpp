@@ -109,6 +109,9 @@ LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, cons
   });
   LoadSample sample;
   sample.raysPerSegment = double(window) * window;
+  std::size_t segments = 0;
+  for (const LoadSample& row : rows) segments += row.segments.size();
+  sample.segments.reserve(segments);
   for (const LoadSample& row : rows) {
     sample.segments.insert(sample.segments.end(), row.segments.begin(), row.segments.end());
     sample.raysTraced += row.raysTraced;

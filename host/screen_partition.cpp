@@ -16,17 +16,28 @@ std::vector<int> evenCuts(int samples, int parts) {
   return cuts;
 }
 
-ScreenPartition uniformGrid(const core::View& view, const MachineSettings& machine) {
-  return {node::RegionMap::grid(evenCuts(view.samplesX(), machine.columns),
-                                evenCuts(view.samplesY(), machine.rows), node::ScreenLines(view)),
-          Balance::Uniform, std::nullopt, std::nullopt};
+// The areas of a partition, and which it is.
+struct Areas {
+  std::vector<node::SampleRect> areas;
+  Balance balance;
+};
+
+Areas uniformGrid(const core::View& view, const MachineSettings& machine) {
+  return {node::RegionMap::gridAreas(evenCuts(view.samplesX(), machine.columns),
+                                     evenCuts(view.samplesY(), machine.rows)),
+          Balance::Uniform};
 }
 
-ScreenPartition equalLoads(const core::View& view, const LoadSample& load, const MachineSettings& machine) {
-  return {node::RegionMap(bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
-                                       machine.loadMetric),
-                          node::ScreenLines(view)),
-          Balance::Bsp, std::nullopt, std::nullopt};
+Areas equalLoads(const core::View& view, const LoadSample& load, const MachineSettings& machine) {
+  return {bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
+                       machine.loadMetric),
+          Balance::Bsp};
+}
+
+ScreenPartition madeOf(Areas made, const core::View& view, const MachineSettings& machine) {
+  const int gridColumns = made.balance == Balance::Uniform ? machine.columns : 0;
+  return {node::RegionMap(std::move(made.areas), node::ScreenLines(view), gridColumns), made.balance,
+          std::nullopt, std::nullopt};
 }
 
 }  // namespace
@@ -41,16 +52,21 @@ ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
                                 const MachineSettings& machine, int cores) {
   const PartitionsFitting fits = partitionsFitting(machine, view);
   if (machine.balance == Balance::Bsp || (machine.balance == Balance::Auto && !fits.grid))
-    return equalLoads(view, load, machine);
-  if (machine.balance == Balance::Uniform || !fits.bsp()) return uniformGrid(view, machine);
-  ScreenPartition balanced = equalLoads(view, load, machine), grid = uniformGrid(view, machine);
-  for (ScreenPartition* p : {&balanced, &grid})
-    p->estimates = estimateAreas(p->regions.areas(), load, machine.loadMetric);
-  const PartitionForecast forecast{cores, estimatedSpan(balanced.estimates->loads, cores),
-                                   estimatedSpan(grid.estimates->loads, cores)};
-  ScreenPartition& made = forecast.uniformSpan < forecast.bspSpan ? grid : balanced;
+    return madeOf(equalLoads(view, load, machine), view, machine);
+  if (machine.balance == Balance::Uniform || !fits.bsp())
+    return madeOf(uniformGrid(view, machine), view, machine);
+  // Only the partition made gets its region map (a table of every sample's owner: 128 fresh pages at 512 x
+  // 512).
+  Areas balanced = equalLoads(view, load, machine), grid = uniformGrid(view, machine);
+  AreaEstimates balancedLoads = estimateAreas(balanced.areas, load, machine.loadMetric);
+  AreaEstimates gridLoads = estimateAreas(grid.areas, load, machine.loadMetric);
+  const PartitionForecast forecast{cores, estimatedSpan(balancedLoads.loads, cores),
+                                   estimatedSpan(gridLoads.loads, cores)};
+  const bool gridWins = forecast.uniformSpan < forecast.bspSpan;
+  ScreenPartition made = madeOf(gridWins ? std::move(grid) : std::move(balanced), view, machine);
   made.forecast = forecast;
-  return std::move(made);
+  made.estimates = gridWins ? std::move(gridLoads) : std::move(balancedLoads);
+  return made;
 }
 
 }  // namespace raycube::host

@@ -65,13 +65,18 @@ RegionMap::RegionMap(std::vector<SampleRect> areas, const ScreenLines& lines, in
   }
 }
 
-RegionMap RegionMap::grid(const std::vector<int>& columnStarts, const std::vector<int>& rowStarts,
-                          const ScreenLines& lines) {
+std::vector<SampleRect> RegionMap::gridAreas(const std::vector<int>& columnStarts,
+                                             const std::vector<int>& rowStarts) {
   std::vector<SampleRect> areas;
   for (std::size_t r = 0; r + 1 < rowStarts.size(); ++r)
     for (std::size_t c = 0; c + 1 < columnStarts.size(); ++c)
       areas.push_back(SampleRect{columnStarts[c], columnStarts[c + 1], rowStarts[r], rowStarts[r + 1]});
-  return RegionMap(std::move(areas), lines, int(columnStarts.size()) - 1);
+  return areas;
+}
+
+RegionMap RegionMap::grid(const std::vector<int>& columnStarts, const std::vector<int>& rowStarts,
+                          const ScreenLines& lines) {
+  return RegionMap(gridAreas(columnStarts, rowStarts), lines, int(columnStarts.size()) - 1);
 }
 
 int RegionMap::ownerAt(const EyeFrameRay& ray, double t) const {

@@ -22,6 +22,9 @@ class RegionMap {
   // The uniform R x C grid of 3.1, processors numbered row by row.
   static RegionMap grid(const std::vector<int>& columnStarts, const std::vector<int>& rowStarts,
                         const ScreenLines& lines);
+  // Its areas, row by row.
+  static std::vector<SampleRect> gridAreas(const std::vector<int>& columnStarts,
+                                           const std::vector<int>& rowStarts);
 
   int processors() const { return int(areas_.size()); }
   int gridColumns() const { return gridColumns_; }  // > 0: built as a uniform grid of that many columns
