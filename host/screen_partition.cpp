@@ -9,6 +9,10 @@
 namespace raycube::host {
 namespace {
 
+// Two spans this close are equal: where no ray crosses a cut (tree 11, tetra 6: no secondary rays), both
+// partitions hold the same pieces, summed in another order, and differ only in their last bits.
+constexpr double kSpansEqualWithin = 1e-9;
+
 // 3.1: pixel areas with (nearly) equal sample counts.
 std::vector<int> evenCuts(int samples, int parts) {
   std::vector<int> cuts;
@@ -62,7 +66,7 @@ ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
   AreaEstimates gridLoads = estimateAreas(grid.areas, load, machine.loadMetric);
   const PartitionForecast forecast{cores, estimatedSpan(balancedLoads.loads, cores),
                                    estimatedSpan(gridLoads.loads, cores)};
-  const bool gridWins = forecast.uniformSpan < forecast.bspSpan;
+  const bool gridWins = forecast.uniformSpan < forecast.bspSpan * (1 - kSpansEqualWithin);
   ScreenPartition made = madeOf(gridWins ? std::move(grid) : std::move(balanced), view, machine);
   made.forecast = forecast;
   made.estimates = gridWins ? std::move(gridLoads) : std::move(balancedLoads);

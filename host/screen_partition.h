@@ -29,7 +29,8 @@ struct ScreenPartition {
 double estimatedSpan(const std::vector<double>& loads, int cores);
 
 // `cores`: how many the processors share (Auto's forecast). Auto falls back to the one partition that fits
-// the view (machine_checks.h) where only one does; a tie keeps the paper's BSP.
+// the view (machine_checks.h) where only one does; a tie keeps the paper's BSP (spans equal but for
+// rounding: the same pieces summed in another order).
 ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
                                 const MachineSettings& machine, int cores);
 

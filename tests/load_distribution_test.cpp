@@ -284,6 +284,25 @@ TEST(ScreenPartition, AutoWeighsTheCoresTheProcessorsShare) {
   EXPECT_EQ(oneCore.regions.areaOf(0).x1, 25);
 }
 
+// Where no ray crosses a cut (points: light rays traced where they start, scenes without secondary rays),
+// both partitions hold the same pieces and, on one core, have the same span but for the rounding of sums
+// taken in another order: a tie, which keeps the paper's BSP.
+TEST(ScreenPartition, EqualSpansKeepTheBsp) {
+  const core::Scene scene = core::makeBalls(1);
+  const core::View view(scene.camera, 100, 100, core::Sampling::Centers);
+  LoadSample sample;
+  for (int i = 0; i < 5000; ++i) {
+    const double x = 0.5 + (i * 37) % 100, y = 0.5 + (i * 61) % 100;
+    sample.segments.push_back(ScreenSegment{x, y, x, y, 0.1 * (1 + i % 7)});
+  }
+  for (int cores : {1, 2}) {
+    const ScreenPartition made = partitionScreen(view, sample, gridOf(4, 4, Balance::Auto), cores);
+    ASSERT_TRUE(made.forecast.has_value());
+    EXPECT_NEAR(made.forecast->uniformSpan, made.forecast->bspSpan, 1e-9 * made.forecast->bspSpan);
+    EXPECT_EQ(made.balance, Balance::Bsp) << cores << " cores";
+  }
+}
+
 // A partition asked for by name is made whatever the forecast; Auto takes the only one that fits.
 TEST(ScreenPartition, AskedByNameOrTheOnlyOneFitting) {
   const core::Scene scene = core::makeBalls(1);
