@@ -314,7 +314,7 @@ void reportRun(MachineRun run, const std::vector<double>& estimatedLoad, const L
 }
 
 // Phases 2 and 3 (3.2 steps 1-2, 3.7.1): sub-sample the image and project its rays (a BSP balances them,
-// the uniform grid is only measured), partition the screen, prune the database per region and light volume.
+// auto weighs them on both partitions), partition the screen, prune the database per region and light volume.
 struct HostPreparation {
   LoadSample load;
   Balance balance;  // the partition made

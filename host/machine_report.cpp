@@ -30,16 +30,17 @@ const char* balanceName(Balance balance) {
   return std::array{"auto", "uniform", "bsp"}[std::size_t(balance)];
 }
 
-// The partition made, and what chose it when the run asked for either: "auto: uniform (estimated span 1.70 M
-// against the BSP's 2.20 M, 2 cores)".
+// The partition made, and what chose it when the run asked for either: "auto: uniform, estimated span
+// 1.7e+06 against 2.2e+06 for the BSP on 2 cores".
 std::string balanceText(const MachineReport& report) {
   const char* made = balanceName(report.settings.balance);
   if (report.balanceAsked != Balance::Auto) return made;
   if (!report.partitionForecast) return fmt::format("auto: {}, the only one fitting", made);
   const PartitionForecast& f = *report.partitionForecast;
+  const bool bsp = report.settings.balance == Balance::Bsp;
   return fmt::format("auto: {}, estimated span {:.3g} against {:.3g} for the {} on {} cores", made,
-                     std::min(f.bspSpan, f.uniformSpan), std::max(f.bspSpan, f.uniformSpan),
-                     report.settings.balance == Balance::Bsp ? "grid" : "BSP", f.cores);
+                     bsp ? f.bspSpan : f.uniformSpan, bsp ? f.uniformSpan : f.bspSpan, bsp ? "grid" : "BSP",
+                     f.cores);
 }
 
 nlohmann::json forecastJson(const MachineReport& report) {

@@ -59,8 +59,8 @@ ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
     return madeOf(equalLoads(view, load, machine), view, machine);
   if (machine.balance == Balance::Uniform || !fits.bsp())
     return madeOf(uniformGrid(view, machine), view, machine);
-  // Only the partition made gets its region map (a table of every sample's owner: 128 fresh pages at 512 x
-  // 512).
+  // Only the partition made gets its region map: its table of every sample's owner is 128 fresh pages at
+  // 512 x 512.
   Areas balanced = equalLoads(view, load, machine), grid = uniformGrid(view, machine);
   AreaEstimates balancedLoads = estimateAreas(balanced.areas, load, machine.loadMetric);
   AreaEstimates gridLoads = estimateAreas(grid.areas, load, machine.loadMetric);
