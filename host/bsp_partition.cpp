@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -115,8 +116,8 @@ struct Splitter {
     node::SampleRect first = r, second = r;
     (axis == 0 ? first.x1 : first.y1) = best;
     (axis == 0 ? second.x0 : second.y0) = best;
-    split(first, p1, clipToSide(pieces, first, Side{axis, double(best), false}));
-    split(second, p2, clipToSide(pieces, second, Side{axis, double(best), true}));
+    split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
+    split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
   }
 
   // One side of a cut: the line `at` across `axis`, the side beyond it or before it.
@@ -125,29 +126,21 @@ struct Splitter {
     double at;
     bool beyond;
   };
-  // The pieces' parts inside r, the area on `side` of its parent's cut. A piece lying on the other side,
-  // clear of the line by more than rounding, is passed over unclipped: the clip would drop it (its
+  // The pieces' parts inside r. Given the side of its parent's cut r lies on, a piece lying on the other
+  // side, clear of the line by more than rounding, is passed over unclipped: the clip would drop it (its
   // parameter range along the line's normal ends a relative 1e-12 or more before the line).
-  std::vector<ScreenSegment> clipToSide(const std::vector<ScreenSegment>& pieces, const node::SampleRect& r,
-                                        const Side& side) const {
-    const double margin = 1e-9 * (1 + std::abs(side.at));
-    std::vector<ScreenSegment> kept;
-    ScreenSegment piece;
-    for (const ScreenSegment& s : pieces) {
-      const double a = side.axis == 0 ? s.x0 : s.y0, b = side.axis == 0 ? s.x1 : s.y1;
-      const bool elsewhere =
-          side.beyond ? std::max(a, b) < side.at - margin : std::min(a, b) > side.at + margin;
-      if (!elsewhere && clipSegment(s, r.x0, r.y0, r.x1, r.y1, metric, piece)) kept.push_back(piece);
-    }
-    return kept;
-  }
-
-  std::vector<ScreenSegment> clipAll(const std::vector<ScreenSegment>& pieces,
-                                     const node::SampleRect& r) const {
+  std::vector<ScreenSegment> clipAll(const std::vector<ScreenSegment>& pieces, const node::SampleRect& r,
+                                     std::optional<Side> side = std::nullopt) const {
+    const double margin = side ? 1e-9 * (1 + std::abs(side->at)) : 0;
+    auto elsewhere = [&](const ScreenSegment& s) {
+      if (!side) return false;
+      const double a = side->axis == 0 ? s.x0 : s.y0, b = side->axis == 0 ? s.x1 : s.y1;
+      return side->beyond ? std::max(a, b) < side->at - margin : std::min(a, b) > side->at + margin;
+    };
     std::vector<ScreenSegment> kept;
     ScreenSegment piece;
     for (const ScreenSegment& s : pieces)
-      if (clipSegment(s, r.x0, r.y0, r.x1, r.y1, metric, piece)) kept.push_back(piece);
+      if (!elsewhere(s) && clipSegment(s, r.x0, r.y0, r.x1, r.y1, metric, piece)) kept.push_back(piece);
     return kept;
   }
 };

@@ -321,7 +321,7 @@ struct HostPreparation {
   std::optional<PartitionForecast> forecast;
   node::MachineContext context;
   std::vector<node::NodeSetup> setups;
-  AreaEstimates estimates;  // what the sub-sample puts in each region: from the partition, or at launch
+  AreaEstimates estimates;  // what the sub-sample puts in each region (weighed while partitioning)
 };
 
 // The time since the last lap, and a new lap.
@@ -394,10 +394,8 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
       setup.sceneTree = wholeScene;
     }
   seconds.pruning = laps.next();
-  HostPreparation prepared{std::move(load),    partition.balance, partition.forecast,
-                           std::move(context), std::move(setups), {}};
-  if (partition.estimates) prepared.estimates = std::move(*partition.estimates);
-  return prepared;
+  return {std::move(load),    partition.balance, partition.forecast,
+          std::move(context), std::move(setups), std::move(partition.estimates)};
 }
 
 // When the run started, when the engine was given the processors, and when the synthesis phase started
@@ -416,8 +414,6 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
                   SynthesisClock& clock, const std::function<void()>& alongsideSynthesis) {
   progress.phase("cells");  // 3.2 step 2: each processor subdivides its region, in the engine
   clock.launch = Clock::now();
-  if (host.estimates.loads.empty())  // not weighed while partitioning
-    host.estimates = estimateAreas(host.context.regions.areas(), host.load, machine.loadMetric);
   const MachineProgress work(host.estimates.expected);
   EngineHooks hooks;
   hooks.host = &accumulator;

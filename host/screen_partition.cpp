@@ -38,10 +38,12 @@ Areas equalLoads(const core::View& view, const LoadSample& load, const MachineSe
           Balance::Bsp};
 }
 
-ScreenPartition madeOf(Areas made, const core::View& view, const MachineSettings& machine) {
+// The partition of these areas, with what the sub-sample puts in each.
+ScreenPartition madeOf(Areas made, AreaEstimates estimates, const core::View& view,
+                       const MachineSettings& machine) {
   const int gridColumns = made.balance == Balance::Uniform ? machine.columns : 0;
   return {node::RegionMap(std::move(made.areas), node::ScreenLines(view), gridColumns), made.balance,
-          std::nullopt, std::nullopt};
+          std::nullopt, std::move(estimates)};
 }
 
 }  // namespace
@@ -55,10 +57,13 @@ double estimatedSpan(const std::vector<double>& loads, int cores) {
 ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
                                 const MachineSettings& machine, int cores) {
   const PartitionsFitting fits = partitionsFitting(machine, view);
+  auto weighed = [&](Areas areas) {
+    AreaEstimates estimates = estimateAreas(areas.areas, load, machine.loadMetric);
+    return madeOf(std::move(areas), std::move(estimates), view, machine);
+  };
   if (machine.balance == Balance::Bsp || (machine.balance == Balance::Auto && !fits.grid))
-    return madeOf(equalLoads(view, load, machine), view, machine);
-  if (machine.balance == Balance::Uniform || !fits.bsp())
-    return madeOf(uniformGrid(view, machine), view, machine);
+    return weighed(equalLoads(view, load, machine));
+  if (machine.balance == Balance::Uniform || !fits.bsp()) return weighed(uniformGrid(view, machine));
   // Only the partition made gets its region map: its table of every sample's owner is 128 fresh pages at
   // 512 x 512.
   Areas balanced = equalLoads(view, load, machine), grid = uniformGrid(view, machine);
@@ -67,9 +72,9 @@ ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
   const PartitionForecast forecast{cores, estimatedSpan(balancedLoads.loads, cores),
                                    estimatedSpan(gridLoads.loads, cores)};
   const bool gridWins = forecast.uniformSpan < forecast.bspSpan * (1 - kSpansEqualWithin);
-  ScreenPartition made = madeOf(gridWins ? std::move(grid) : std::move(balanced), view, machine);
+  ScreenPartition made = madeOf(gridWins ? std::move(grid) : std::move(balanced),
+                                gridWins ? std::move(gridLoads) : std::move(balancedLoads), view, machine);
   made.forecast = forecast;
-  made.estimates = gridWins ? std::move(gridLoads) : std::move(balancedLoads);
   return made;
 }
 

@@ -22,7 +22,7 @@ struct ScreenPartition {
   node::RegionMap regions;
   Balance balance = Balance::Bsp;             // the partition made: Uniform or Bsp
   std::optional<PartitionForecast> forecast;  // what chose it, when Auto had both to choose from
-  std::optional<AreaEstimates> estimates;     // the sub-sample's per area, where the forecast weighed them
+  AreaEstimates estimates;                    // the sub-sample's in each area (and the forecast's loads)
 };
 
 // The estimated span of areas whose loads are `loads`, on `cores` cores.
