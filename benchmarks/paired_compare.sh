@@ -25,8 +25,6 @@ measure() {
   timing=$( { TIMEFORMAT='%3U %3S %3R'; time bash -c "$1" > /dev/null 2>&1; } 2>&1) || die "failed: $1"
   read -r cpu wall < <(awk '{printf "%.3f %.3f\n", $1 + $2, $3}' <<< "$timing")
 }
-# The q-th quantile (0..1) of numbers on stdin, by nearest rank.
-quantile() { sort -g | awk -v q="$1" '{a[NR] = $1} END {i = int(q * (NR - 1) + 0.5) + 1; print a[i]}'; }
 
 cpu_a="" cpu_b="" wall_a="" wall_b="" cpu_ratio="" wall_ratio=""
 for ((round = 1; round <= rounds; ++round)); do
@@ -47,8 +45,7 @@ summary() {  # name, ratios, A's times, B's times
   local ratios=$2
   printf '%-4s A median %.3f s, B median %.3f s; B / A median %.3f (quartiles %.3f-%.3f)\n' "$1" \
     "$(echo "$3" | median)" "$(echo "$4" | median)" "$(echo "$ratios" | median)" \
-    "$(echo "$ratios" | tr ' ' '\n' | grep -v '^$' | quantile 0.25)" \
-    "$(echo "$ratios" | tr ' ' '\n' | grep -v '^$' | quantile 0.75)"
+    "$(echo "$ratios" | quantile 0.25)" "$(echo "$ratios" | quantile 0.75)"
 }
 echo "A: $2"
 echo "B: $3"

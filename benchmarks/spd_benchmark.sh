@@ -3,12 +3,17 @@
 # reference renderer (where it finishes within REFERENCE_LIMIT seconds; skipped with a note otherwise),
 # image-parallel, the machine at 4x4 and 8x8, and POV-Ray when installed; then the cost per ray against
 # the number of primitives, SPD balls sizes 1 to 5, image-parallel and machine 4x4, as a table and a plot.
-# Medians of RUNS runs, run side by side (run 1 of every renderer, then run 2, ...) so drift in the load of
-# the computer hits all alike. Markdown tables on stdout; progress on stderr.
+# Medians of RUNS runs, run side by side (run 1 of every renderer, then run 2, ..., the order reversed
+# every other run) so drift in the speed of the computer hits all alike. Markdown tables on stdout;
+# progress on stderr.
 #
 # Per scene and renderer: primitives, preprocessing and tracing time (raycube's --stats: SPD rule 12), rays
-# per second over the tracing time, peak memory (maximum resident set, /usr/bin/time -v), whole-process wall
-# time, and that time over image-parallel's.
+# per second over the tracing time, peak memory (maximum resident set, /usr/bin/time), whole-process wall
+# time (to the millisecond), and that time over image-parallel's. Then issue 13's targets, each ratio taken
+# run by run (the runs of one round side by side) and given as the median and quartiles of those ratios:
+# machine 4x4 over image-parallel (at most 1.5), 8x8 over 4x4 (at most 1.3), the machine's preprocessing
+# share of its run (at most 20%), its peak memory over image-parallel's (at most 2), POV-Ray over
+# image-parallel (at least 2); bold where a median misses.
 #
 # usage: benchmarks/spd_benchmark.sh RAYCUBE_BINARY [MORE.nff ...]
 # environment:
@@ -60,52 +65,53 @@ if command -v povray >/dev/null; then have_povray=1; fi
 run_raycube() {
   local name=$1
   shift
-  local stats="$out/$name.json" log="$out/$name.log" usage="$out/$name.time"
-  local status=0
-  /usr/bin/time -f "%e %M" -o "$usage" timeout "${LIMIT:-$run_limit}" \
-    "$raycube" render "$@" --depth "$depth" -q -o "$out/$name.exr" --stats "$stats" >"$log" 2>&1 || status=$?
+  local stats="$out/$name.json"
+  timed "$name" "raycube render $*" timeout "${LIMIT:-$run_limit}" \
+    "$raycube" render "$@" --depth "$depth" -q -o "$out/$name.exr" --stats "$stats" || return 0
+  echo "$wall_peak $(jq -r '[.seconds.preprocessing, .seconds.tracing, .totalRays, .scene.objects] | @tsv' "$stats")" \
+    >>"$out/$name.runs"
+}
+
+# Runs COMMAND... (output to $out/NAME.log) under GNU time for its peak memory, timing its wall clock to the
+# microsecond with bash's clock (GNU time's 10 ms steps moved the ratios of 0.1-0.2 s runs by 5-10%): sets
+# wall_peak to "wall_s peak_kB" and returns 0, or notes "timeout" (stopped after the limit) or "failed" in
+# $out/NAME.runs and returns 1. DESCRIPTION names the command in the failure note.
+timed() {
+  local name=$1 description=$2
+  shift 2
+  local status=0 start=${EPOCHREALTIME/,/.}
+  /usr/bin/time -f "%M" -o "$out/$name.time" "$@" >"$out/$name.log" 2>&1 || status=$?
+  local end=${EPOCHREALTIME/,/.}
   if [[ $status == 124 ]]; then
     echo timeout >>"$out/$name.runs"
-    return
+    return 1
   fi
   if [[ $status != 0 ]]; then
-    echo "spd_benchmark.sh: raycube render $* failed (exit $status); see $log" >&2
+    echo "spd_benchmark.sh: $description failed (exit $status); see $out/$name.log" >&2
     echo failed >>"$out/$name.runs"
-    return
+    return 1
   fi
-  local usage_line
-  usage_line=$(tail -n 1 "$usage")
-  echo "$usage_line $(jq -r '[.seconds.preprocessing, .seconds.tracing, .totalRays, .scene.objects] | @tsv' "$stats")" \
-    >>"$out/$name.runs"
+  wall_peak="$(awk -v a="$start" -v b="$end" 'BEGIN {printf "%.6f", b - a}') $(tail -n 1 "$out/$name.time")"
 }
 
 # POV-Ray: NAME POV_FILE WxH; its parse time counts as preprocessing, as raycube's reading of the NFF does not.
 run_povray() {
   local name=$1 pov=$2 width=${3%x*} height=${3#*x}
-  local status=0
-  (cd "$out" && /usr/bin/time -f "%e %M" -o "$out/$name.time" timeout "$run_limit" \
-    povray "+I$pov" "+W$width" "+H$height" -A "+WT$threads" -D +FN "+O$out/$name.png" >"$out/$name.log" 2>&1) ||
-    status=$?
-  if [[ $status == 124 ]]; then
-    echo timeout >>"$out/$name.runs"
-    return
-  fi
-  if [[ $status != 0 ]]; then
-    echo "spd_benchmark.sh: povray $pov failed (exit $status); see $out/$name.log" >&2
-    echo failed >>"$out/$name.runs"
-    return
-  fi
+  timed "$name" "povray $pov" env -C "$out" timeout "$run_limit" \
+    povray "+I$pov" "+W$width" "+H$height" -A "+WT$threads" -D +FN "+O$out/$name.png" || return 0
   local parse trace
   parse=$(sed -n 's/^ *Parse Time:.*(\([0-9.]*\) seconds).*/\1/p' "$out/$name.log" | tail -n 1)
   trace=$(sed -n 's/^ *Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$out/$name.log" | tail -n 1)
-  echo "$(tail -n 1 "$out/$name.time") ${parse:-0} ${trace:-0} - -" >>"$out/$name.runs"
+  echo "$wall_peak ${parse:-0} ${trace:-0} - -" >>"$out/$name.runs"
 }
 
-# Median of column COLUMN (1-based) of NAME's runs; "timeout" or "failed" when a run was.
+# Median of column COLUMN (1-based) of NAME's runs; "timeout" or "failed" when a run was, "-" where the
+# renderer does not report it (POV-Ray's rays).
 column_median() {
   local file="$out/$1.runs"
   if grep -q timeout "$file"; then echo timeout; return; fi
   if grep -q failed "$file"; then echo failed; return; fi
+  if awk -v c="$2" '$c == "-" {found = 1} END {exit !found}' "$file"; then echo -; return; fi
   awk -v c="$2" '{print $c}' "$file" | median
 }
 
@@ -137,11 +143,52 @@ table_row() {
     "$(awk -v k="$peak" 'BEGIN {printf "%.0f", k / 1024}') | $(fmt "$wall" %.2f) | $ratio |"
 }
 
+# The ratios, run by run, of column COLUMN_A (1-based, default 1: wall) of A's runs over column COLUMN_B of
+# B's: line k of each .runs file is round k. Prints "median first-quartile third-quartile", or "- - -" when
+# either is missing or had a run that failed or timed out.
+paired_ratios() {
+  local a="$out/$1.runs" b="$out/$2.runs" column_a=${3:-1} column_b=${4:-1}
+  if [[ ! -f $a || ! -f $b ]] || grep -q "timeout\|failed" "$a" "$b"; then
+    echo "- - -"
+    return
+  fi
+  local ratios
+  ratios=$(paste -d ' ' "$a" "$b" | awk -v a="$column_a" -v b="$column_b" 'NF == 12 && $(6 + b) > 0 {print $a / $(6 + b)}')
+  echo "$(echo "$ratios" | median) $(echo "$ratios" | quantile 0.25) $(echo "$ratios" | quantile 0.75)"
+}
+
+# A table cell for paired_ratios' output: "median (quartiles)", as a percentage when FORMAT is %, bold when
+# the median is above LIMIT (BOUND max) or below it (BOUND min).
+target_cell() {
+  local median first third
+  read -r median first third <<< "$1"
+  if [[ $median == - ]]; then echo "-"; return; fi
+  awk -v m="$median" -v lo="$first" -v hi="$third" -v limit="$2" -v bound="$3" -v format="${4:-}" 'BEGIN {
+    scale = format == "%" ? 100 : 1
+    f = format == "%" ? "%.0f%%" : "%.2f"
+    cell = sprintf(f " (" f "-" f ")", m * scale, lo * scale, hi * scale)
+    miss = bound == "max" ? m > limit : m < limit
+    print miss ? "**" cell "**" : cell
+  }'
+}
+
+# One row of the targets table: SCENE_LABEL BASE (the runs' names are BASE.RENDERER).
+targets_row() {
+  local label=$1 b=$2
+  echo "| $label | $(target_cell "$(paired_ratios "$b.machine4x4" "$b.image-parallel")" 1.5 max)" \
+    "| $(target_cell "$(paired_ratios "$b.machine8x8" "$b.machine4x4")" 1.3 max)" \
+    "| $(target_cell "$(paired_ratios "$b.machine4x4" "$b.machine4x4" 3 1)" 0.2 max %)" \
+    "| $(target_cell "$(paired_ratios "$b.machine8x8" "$b.machine8x8" 3 1)" 0.2 max %)" \
+    "| $(target_cell "$(paired_ratios "$b.machine4x4" "$b.image-parallel" 2 2)" 2 max)" \
+    "| $(target_cell "$(paired_ratios "$b.machine8x8" "$b.image-parallel" 2 2)" 2 max)" \
+    "| $(target_cell "$(paired_ratios "$b.povray" "$b.image-parallel")" 2 min) |"
+}
+
 # ---- The scenes at their default sizes ----
 if ((${#scenes[@]} > 0)); then
   pov_dir=$(mktemp -d /tmp/spd_benchmark_pov.XXXXXX)
   trap 'rm -rf "$pov_dir"' EXIT
-  rows=()
+  rows=() target_rows=()
   for scene in "${scenes[@]}"; do
     base=$(basename "$scene" .nff)
     size=${SIZE:-$(awk '$1 == "resolution" {print $2 "x" $3; exit}' "$scene")}
@@ -160,10 +207,17 @@ if ((${#scenes[@]} > 0)); then
         LIMIT=$reference_limit run_raycube "$base.reference" "${scene_args[@]}" --mode reference
         grep -q "timeout\|failed" "$out/$base.reference.runs" && reference=0
       fi
-      run_raycube "$base.image-parallel" "${scene_args[@]}" --mode image-parallel --threads "$threads"
-      run_raycube "$base.machine4x4" "${scene_args[@]}" --mode machine --procs 4x4
-      run_raycube "$base.machine8x8" "${scene_args[@]}" --mode machine --procs 8x8
-      [[ -z $pov ]] || run_povray "$base.povray" "$pov" "$size"
+      order=(image-parallel machine4x4 machine8x8)
+      [[ -z $pov ]] || order+=(povray)
+      ((run % 2)) || mapfile -t order < <(printf '%s\n' "${order[@]}" | tac)
+      for renderer in "${order[@]}"; do
+        case $renderer in
+          image-parallel) run_raycube "$base.$renderer" "${scene_args[@]}" --mode image-parallel --threads "$threads" ;;
+          machine4x4) run_raycube "$base.$renderer" "${scene_args[@]}" --mode machine --procs 4x4 ;;
+          machine8x8) run_raycube "$base.$renderer" "${scene_args[@]}" --mode machine --procs 8x8 ;;
+          povray) run_povray "$base.$renderer" "$pov" "$size" ;;
+        esac
+      done
     done
     for renderer in reference machine4x4 machine8x8; do
       if [[ -f $out/$base.$renderer.runs ]] && ! grep -q "timeout\|failed" "$out/$base.$renderer.runs" && ! "$raycube" compare "$out/$base.image-parallel.exr" \
@@ -177,6 +231,7 @@ if ((${#scenes[@]} > 0)); then
     rows+=("$(table_row "$label" "machine 4×4" "$base.machine4x4" "$base.image-parallel")")
     rows+=("$(table_row "$label" "machine 8×8" "$base.machine8x8" "$base.image-parallel")")
     [[ -z $pov ]] || rows+=("$(table_row "$label" "POV-Ray 3.7 ($threads threads)" "$base.povray" "$base.image-parallel")")
+    target_rows+=("$(targets_row "$label" "$base")")
   done >/dev/null
   echo "### The SPD scenes at their default sizes"
   echo
@@ -187,6 +242,15 @@ if ((${#scenes[@]} > 0)); then
   echo "| scene | primitives | renderer | preprocessing (s) | tracing (s) | Mrays/s | peak memory (MB) | whole process (s) | / image-parallel |"
   echo "|---|---:|---|---:|---:|---:|---:|---:|---:|"
   printf '%s\n' "${rows[@]}"
+  echo
+  echo "### Issue 13's targets, run by run"
+  echo
+  echo "Each ratio taken within each of the $runs rounds (the renderers of a round run back to back, in" \
+    "alternating order), then its median (quartiles); bold where the median misses the target in the heading."
+  echo
+  echo "| scene | machine 4×4 / image-parallel (≤ 1.5) | 8×8 / 4×4 (≤ 1.3) | preprocessing 4×4 (≤ 20%) | preprocessing 8×8 (≤ 20%) | peak 4×4 / image-parallel (≤ 2) | peak 8×8 / image-parallel (≤ 2) | POV-Ray / image-parallel (≥ 2) |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+  printf '%s\n' "${target_rows[@]}"
   echo
 fi
 
@@ -207,9 +271,16 @@ if [[ $sweep == 1 ]]; then
     echo "balls $size at $sweep_size: image-parallel and machine 4x4, $runs runs" >&2
     rm -f "$out/balls$size.sweep."*.runs
     for ((run = 1; run <= runs; ++run)); do
-      run_raycube "balls$size.sweep.image-parallel" --balls "$size" --size "$sweep_size" --mode image-parallel \
-        --threads "$threads"
-      run_raycube "balls$size.sweep.machine4x4" --balls "$size" --size "$sweep_size" --mode machine --procs 4x4
+      order=(image-parallel machine4x4)
+      ((run % 2)) || order=(machine4x4 image-parallel)
+      for renderer in "${order[@]}"; do
+        if [[ $renderer == image-parallel ]]; then
+          run_raycube "balls$size.sweep.$renderer" --balls "$size" --size "$sweep_size" --mode image-parallel \
+            --threads "$threads"
+        else
+          run_raycube "balls$size.sweep.$renderer" --balls "$size" --size "$sweep_size" --mode machine --procs 4x4
+        fi
+      done
     done
     read -r ip_trace ip_whole <<< "$(per_ray "balls$size.sweep.image-parallel")"
     read -r m_trace m_whole <<< "$(per_ray "balls$size.sweep.machine4x4")"
