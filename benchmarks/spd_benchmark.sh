@@ -9,7 +9,8 @@
 #
 # Per scene and renderer: primitives, preprocessing and tracing time (raycube's --stats: SPD rule 12), rays
 # per second over the tracing time, peak memory (maximum resident set, /usr/bin/time), whole-process wall
-# time (to the millisecond), and that time over image-parallel's. Then issue 13's targets, each ratio taken
+# time (to the millisecond), and that time over image-parallel's (the median of the rounds' ratios, as
+# every ratio here). Then issue 13's targets, each ratio taken
 # run by run (the runs of one round side by side) and given as the median and quartiles of those ratios:
 # machine 4x4 over image-parallel (at most 1.5), 8x8 over 4x4 (at most 1.3), the machine's preprocessing
 # share of its run (at most 20%), its peak memory over image-parallel's (at most 2), POV-Ray over
@@ -117,6 +118,20 @@ column_median() {
 
 fmt() { awk -v v="$1" -v f="$2" 'BEGIN { if (v !~ /^[0-9.e+-]+$/ || v == "-") print v; else printf f, v }'; }
 
+# The ratios, run by run, of column COLUMN_A (1-based, default 1: wall) of A's runs over column COLUMN_B of
+# B's: line k of each .runs file is round k. Prints "median first-quartile third-quartile", or "- - -" when
+# either is missing or had a run that failed or timed out.
+paired_ratios() {
+  local a="$out/$1.runs" b="$out/$2.runs" column_a=${3:-1} column_b=${4:-1}
+  if [[ ! -f $a || ! -f $b ]] || grep -q "timeout\|failed" "$a" "$b"; then
+    echo "- - -"
+    return
+  fi
+  local ratios
+  ratios=$(paste -d ' ' "$a" "$b" | awk -v a="$column_a" -v b="$column_b" 'NF == 12 && $(6 + b) > 0 {print $a / $(6 + b)}')
+  echo "$(echo "$ratios" | median) $(echo "$ratios" | quantile 0.25) $(echo "$ratios" | quantile 0.75)"
+}
+
 # One markdown row: SCENE_LABEL RENDERER NAME IMAGE_PARALLEL_NAME
 table_row() {
   local label=$1 renderer=$2 name=$3 baseline=$4
@@ -134,27 +149,13 @@ table_row() {
   rays=$(column_median "$name" 5)
   prims=$(awk '{print $6}' "$out/$name.runs" | head -n 1)
   local ratio=""
-  if [[ $name != "$baseline" && -f "$out/$baseline.runs" ]] && ! grep -q "timeout\|failed" "$out/$baseline.runs"; then
-    ratio=$(awk -v a="$wall" -v b="$(column_median "$baseline" 1)" 'BEGIN {printf "%.2f×", a / b}')
+  if [[ $name != "$baseline" ]]; then
+    ratio=$(paired_ratios "$name" "$baseline" | awk '$1 != "-" {printf "%.2f×", $1}')
   fi
   local mrays="-"
   [[ $rays == - ]] || mrays=$(awk -v r="$rays" -v t="$trace" 'BEGIN { if (t > 0) printf "%.3g", r / t / 1e6; else print "-" }')
   echo "| $label | $prims | $renderer | $(fmt "$pre" %.3f) | $(fmt "$trace" %.3f) | $mrays |" \
     "$(awk -v k="$peak" 'BEGIN {printf "%.0f", k / 1024}') | $(fmt "$wall" %.2f) | $ratio |"
-}
-
-# The ratios, run by run, of column COLUMN_A (1-based, default 1: wall) of A's runs over column COLUMN_B of
-# B's: line k of each .runs file is round k. Prints "median first-quartile third-quartile", or "- - -" when
-# either is missing or had a run that failed or timed out.
-paired_ratios() {
-  local a="$out/$1.runs" b="$out/$2.runs" column_a=${3:-1} column_b=${4:-1}
-  if [[ ! -f $a || ! -f $b ]] || grep -q "timeout\|failed" "$a" "$b"; then
-    echo "- - -"
-    return
-  fi
-  local ratios
-  ratios=$(paste -d ' ' "$a" "$b" | awk -v a="$column_a" -v b="$column_b" 'NF == 12 && $(6 + b) > 0 {print $a / $(6 + b)}')
-  echo "$(echo "$ratios" | median) $(echo "$ratios" | quantile 0.25) $(echo "$ratios" | quantile 0.75)"
 }
 
 # A table cell for paired_ratios' output: "median (quartiles)", as a percentage when FORMAT is %, bold when
@@ -167,7 +168,8 @@ target_cell() {
     scale = format == "%" ? 100 : 1
     f = format == "%" ? "%.0f%%" : "%.2f"
     cell = sprintf(f " (" f "-" f ")", m * scale, lo * scale, hi * scale)
-    miss = bound == "max" ? m > limit : m < limit
+    shown = sprintf(f, m * scale) + 0  # the median as printed, against the limit
+    miss = bound == "max" ? shown > limit * scale : shown < limit * scale
     print miss ? "**" cell "**" : cell
   }'
 }
@@ -236,7 +238,8 @@ if ((${#scenes[@]} > 0)); then
   echo "### The SPD scenes at their default sizes"
   echo
   echo "Depth $depth, median of $runs runs, $(nproc) cores; whole process = wall time of the command;" \
-    "rays/s over the tracing time; the last column is the whole process over image-parallel's."
+    "rays/s over the tracing time; the last column is the whole process over image-parallel's, the median of" \
+    "the rounds' ratios."
   [[ $have_povray == 1 ]] || echo "POV-Ray is not installed (Debian 'povray'): no POV-Ray rows."
   echo
   echo "| scene | primitives | renderer | preprocessing (s) | tracing (s) | Mrays/s | peak memory (MB) | whole process (s) | / image-parallel |"
