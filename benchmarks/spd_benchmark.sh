@@ -186,6 +186,14 @@ targets_row() {
     "| $(target_cell "$(paired_ratios "$b.povray" "$b.image-parallel")" 2 min) |"
 }
 
+# The names of round ROUND's renderers in the order they run: as given in odd rounds, reversed in even ones,
+# so that a drift within a round weighs on every renderer alike.
+round_order() {
+  local round=$1
+  shift
+  if ((round % 2)); then printf '%s\n' "$@"; else printf '%s\n' "$@" | tac; fi
+}
+
 # ---- The scenes at their default sizes ----
 if ((${#scenes[@]} > 0)); then
   pov_dir=$(mktemp -d /tmp/spd_benchmark_pov.XXXXXX)
@@ -209,10 +217,9 @@ if ((${#scenes[@]} > 0)); then
         LIMIT=$reference_limit run_raycube "$base.reference" "${scene_args[@]}" --mode reference
         grep -q "timeout\|failed" "$out/$base.reference.runs" && reference=0
       fi
-      order=(image-parallel machine4x4 machine8x8)
-      [[ -z $pov ]] || order+=(povray)
-      ((run % 2)) || mapfile -t order < <(printf '%s\n' "${order[@]}" | tac)
-      for renderer in "${order[@]}"; do
+      renderers=(image-parallel machine4x4 machine8x8)
+      [[ -z $pov ]] || renderers+=(povray)
+      for renderer in $(round_order "$run" "${renderers[@]}"); do
         case $renderer in
           image-parallel) run_raycube "$base.$renderer" "${scene_args[@]}" --mode image-parallel --threads "$threads" ;;
           machine4x4) run_raycube "$base.$renderer" "${scene_args[@]}" --mode machine --procs 4x4 ;;
@@ -274,9 +281,7 @@ if [[ $sweep == 1 ]]; then
     echo "balls $size at $sweep_size: image-parallel and machine 4x4, $runs runs" >&2
     rm -f "$out/balls$size.sweep."*.runs
     for ((run = 1; run <= runs; ++run)); do
-      order=(image-parallel machine4x4)
-      ((run % 2)) || order=(machine4x4 image-parallel)
-      for renderer in "${order[@]}"; do
+      for renderer in $(round_order "$run" image-parallel machine4x4); do
         if [[ $renderer == image-parallel ]]; then
           run_raycube "balls$size.sweep.$renderer" --balls "$size" --size "$sweep_size" --mode image-parallel \
             --threads "$threads"
