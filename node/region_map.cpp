@@ -85,6 +85,9 @@ int RegionMap::ownerAt(const EyeFrameRay& ray, double t) const {
 }
 
 int RegionMap::ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, int qStep) const {
+  // A uniform grid's regions are its cells, numbered row by row: across a face or a corner, the next cell
+  // (no region lies beyond the screen's edges, which are at infinity).
+  if (gridColumns_ > 0) return id + sStep + qStep * gridColumns_;
   // Along a face not crossed the ray is still within the region's range of samples.
   const SampleRect& a = areas_[id];
   const int column =

@@ -256,6 +256,45 @@ TEST(RegionMap, OwnersAndRoutesOnTheGrid) {
   EXPECT_EQ(map.ownerAt(EyeFrameRay::of(eye, f.view), 1.0), map.ownerOfSample(30, 30));
 }
 
+// Where a ray leaving a region goes: on a uniform grid the next cell across the faces it crosses (corners
+// included), the very processor the same areas name when looked up as an arbitrary tiling.
+TEST(RegionMap, GridNamesTheOwnerBeyondAnExitAsTheGeneralLookupDoes) {
+  Fixture f;
+  const std::vector<int> columns{0, 20, 40, 64}, rows{0, 16, 30, 48};
+  const RegionMap grid = RegionMap::grid(columns, rows, f.lines);
+  const RegionMap tiling(RegionMap::gridAreas(columns, rows), f.lines);  // no grid shortcut
+  ASSERT_GT(grid.gridColumns(), 0);
+  ASSERT_EQ(tiling.gridColumns(), 0);
+  std::mt19937 random(11);
+  int exits = 0;
+  for (int id = 0; id < grid.processors(); ++id) {
+    const RegionCells cells(grid.areaOf(id), f.lines, 0, false, f.all, f.boxes);
+    for (int n = 0; n < 400; ++n) {
+      const EyeFrameRay er = EyeFrameRay::of(rayNearTheMiddle(random), f.view);
+      if (!er.inFront(0) || grid.ownerAt(er, 0) != id) continue;
+      int i, j;
+      cells.locate(er, 0, i, j);
+      RegionExit exit;
+      std::uint64_t steps = 0;
+      if (cells.walk(er, 0, er.partEnd(0), i, j, [](double, double, const auto&) { return true; }, exit, steps) !=
+          WalkResult::Exited)
+        continue;
+      ++exits;
+      EXPECT_EQ(grid.ownerBeyond(id, er, exit.t, exit.sStep, exit.qStep),
+                tiling.ownerBeyond(id, er, exit.t, exit.sStep, exit.qStep))
+          << "region " << id << ", exit (" << exit.sStep << ", " << exit.qStep << ") at t " << exit.t;
+    }
+  }
+  EXPECT_GT(exits, 300);
+  // Through a corner (rare on random rays) the ray meets the diagonal region: region 4, in the middle of
+  // the 3 x 3 grid, to 8 and to 0.
+  for (int step : {1, -1}) {
+    const int diagonal = step > 0 ? 8 : 0;
+    EXPECT_EQ(grid.ownerBeyond(4, EyeFrameRay{}, 0, step, step), diagonal);
+    EXPECT_EQ(tiling.ownerBeyond(4, EyeFrameRay{}, 0, step, step), diagonal);
+  }
+}
+
 // Figure 10: after a BSP a region borders several others on one face; routes follow the adjacency graph.
 TEST(RegionMap, ArbitraryTilingHasItsAdjacencyGraphAndShortestRoutes) {
   Fixture f;
