@@ -19,6 +19,13 @@ std::size_t mailboxesFor(const NodeSetup& setup) {
   return end;
 }
 
+// Per neighbour, in neighbours() order: the face of region `id` it lies across.
+std::vector<Face> facesTowardNeighbours(const RegionMap& regions, int id) {
+  std::vector<Face> faces;
+  for (int n : regions.neighbours(id)) faces.push_back(regions.faceToward(id, n));
+  return faces;
+}
+
 }  // namespace
 
 template <class Real>
@@ -35,6 +42,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
              structure_ == CellStructure::Paper, setup_.objects, setup_.objectBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
       overflow_(neighbours_.size()),
+      faceOf_(facesTowardNeighbours(context.regions, setup_.id)),
       inbox_(scheduling::kInboxBatch),
       mailboxStamp_(structure_ == CellStructure::Paper ? mailboxesFor(setup_) : 0, 0),
       mailboxT_(mailboxStamp_.size(), 0.0),
@@ -385,10 +393,11 @@ void LogicalProcessor<Real>::shipContributions(const core::BasicRayOutcome<Real>
 template <class Real>
 void LogicalProcessor<Real>::send(Message m) {
   const int hop = context_.regions.nextHop(setup_.id, m.destination);
-  m.face = std::uint8_t(opposite(context_.regions.faceToward(setup_.id, hop)));
-  OverflowList<Message>& pending = overflow_[slotOf(hop)];
+  const std::size_t slot = slotOf(hop);
+  m.face = std::uint8_t(opposite(faceOf_[slot]));
+  OverflowList<Message>& pending = overflow_[slot];
   if (pending.empty() && transport_.trySend(hop, std::span<const Message>(&m, 1)) == 1) {
-    countSent(hop, m);
+    countSent(slot, m);
     return;
   }
   ++stats_.refusedPushes;
@@ -402,9 +411,9 @@ std::size_t LogicalProcessor<Real>::slotOf(int neighbour) const {
 }
 
 template <class Real>
-void LogicalProcessor<Real>::countSent(int neighbour, const Message& m) {
+void LogicalProcessor<Real>::countSent(std::size_t slot, const Message& m) {
   termination_.countSent();
-  ++stats_.sent[std::size_t(context_.regions.faceToward(setup_.id, neighbour))];
+  ++stats_.sent[std::size_t(faceOf_[slot])];
   ++stats_.messagesByKind[std::size_t(m.ray.kind)];
 }
 
@@ -416,7 +425,7 @@ bool LogicalProcessor<Real>::flushOverflow() {
     while (!pending.empty()) {  // the oldest first, a chunk's run at a time, until the FIFO is full
       const std::span<const Message> waiting = pending.oldest();
       const std::size_t n = transport_.trySend(neighbours_[slot], waiting);
-      for (std::size_t k = 0; k < n; ++k) countSent(neighbours_[slot], waiting[k]);
+      for (std::size_t k = 0; k < n; ++k) countSent(slot, waiting[k]);
       pending.pop_front(n);
       moved |= n > 0;
       if (n < waiting.size()) break;

@@ -128,7 +128,7 @@ class LogicalProcessor {
   void shipContributions(const core::BasicRayOutcome<Real>& outcome);
   // Communication task
   void send(Message message);
-  void countSent(int neighbour, const Message& message);
+  void countSent(std::size_t slot, const Message& message);
   std::size_t slotOf(int neighbour) const;
   bool flushOverflow();
   void onReceived(const Message& message);
@@ -159,6 +159,7 @@ class LogicalProcessor {
   std::vector<Message> local_;                   // rays spawned here, still to evaluate here
   const std::vector<int>& neighbours_;           // processors across this region's faces
   std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused
+  const std::vector<Face> faceOf_;               // per neighbour: the face of this region it lies across
   std::vector<Message> inbox_;
   core::BasicRayOutcome<Real> outcome_;
   core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered

@@ -74,8 +74,9 @@ int RegionCells::locateIn(const std::vector<double>& bounds, double value) {
 }
 
 void RegionCells::locate(const EyeFrameRay& ray, double t, int& column, int& row) const {
-  column = locateIn(bounds_[0], ray.screenAt(0, t));
-  row = locateIn(bounds_[1], ray.screenAt(1, t));
+  // A single super-cell across an axis (a BVH region's one column) needs no lookup: locateIn's 0.
+  column = columnsX_ == 1 ? 0 : locateIn(bounds_[0], ray.screenAt(0, t));
+  row = bounds_[1].size() == 2 ? 0 : locateIn(bounds_[1], ray.screenAt(1, t));
 }
 
 void RegionCells::locateSample(int sx, int sy, int& column, int& row) const {
