@@ -96,7 +96,8 @@ WalkResult RegionCells::walk(const EyeFrameRay& ray, double t, double tEnd, int 
     const Column& col = column(i, j);
     // Depth partitioning: walk the column's cells in z order.
     const std::vector<double>& splits = col.depthSplits;
-    int k = splits.empty() ? 0 : int(std::upper_bound(splits.begin(), splits.end(), ray.zAt(t)) - splits.begin());
+    int k =
+        splits.empty() ? 0 : int(std::upper_bound(splits.begin(), splits.end(), ray.zAt(t)) - splits.begin());
     for (;;) {
       double tCell = tColumn;
       if (zDir > 0 && k < int(splits.size())) tCell = std::min(tCell, ray.depthCrossing(splits[k]));

@@ -276,9 +276,8 @@ TEST(RegionMap, GridNamesTheOwnerBeyondAnExitAsTheGeneralLookupDoes) {
       cells.locate(er, 0, i, j);
       RegionExit exit;
       std::uint64_t steps = 0;
-      if (cells.walk(er, 0, er.partEnd(0), i, j, [](double, double, const auto&) { return true; }, exit, steps) !=
-          WalkResult::Exited)
-        continue;
+      auto everyCell = [](double, double, const std::vector<std::uint32_t>&) { return true; };
+      if (cells.walk(er, 0, er.partEnd(0), i, j, everyCell, exit, steps) != WalkResult::Exited) continue;
       ++exits;
       EXPECT_EQ(grid.ownerBeyond(id, er, exit.t, exit.sStep, exit.qStep),
                 tiling.ownerBeyond(id, er, exit.t, exit.sStep, exit.qStep))
