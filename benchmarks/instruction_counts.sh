@@ -47,7 +47,8 @@ mkdir -p "$out"
 out=$(realpath "$out")
 
 # One run under callgrind: NAME RENDER_ARGS...; writes $out/NAME.counts, one line: the instructions, the
-# segments evaluated, the messages sent, then the instructions of each layer (in the order of `layers`).
+# segments evaluated, the messages sent, then the instructions of each layer (core, node, queues, host,
+# libraries).
 # Returns 1 (with a note on stderr and in $out/NAME.counts) when raycube fails.
 count() {
   local name=$1
@@ -95,8 +96,6 @@ count() {
 }
 
 millions() { awk -v n="$1" 'BEGIN {printf "%.1f", n / 1e6}'; }
-field() { awk -v k="$2" '{print $k}' "$out/$1.counts"; }
-failed() { [[ $(cat "$out/$1.counts") == failed ]]; }
 
 counts_rows=() layer_rows=()
 for scene in "${scenes[@]}"; do
@@ -108,28 +107,28 @@ for scene in "${scenes[@]}"; do
     names+=("$base.machine$grid")
     count "$base.machine$grid" "$scene" --mode machine --procs "$grid" || true
   done
-  ip="$base.image-parallel"
+  # Each run's counts (see count): c[0] instructions, c[1] segments, c[2] messages, c[3..7] the layers.
+  read -r -a ip < "$out/$base.image-parallel.counts"
   for name in "${names[@]}"; do
     renderer=${name#"$base".}
     [[ $renderer == machine* ]] && renderer="machine ${renderer#machine}"
-    if failed "$name"; then
+    read -r -a c < "$out/$name.counts"
+    if [[ ${c[0]} == failed ]]; then
       counts_rows+=("| $label | $renderer | failed (see $out/$name.log) | | | | |")
       continue
     fi
-    instructions=$(field "$name" 1) segments=$(field "$name" 2) messages=$(field "$name" 3)
     ratio=- per_message=-
-    if ! failed "$ip"; then
-      ratio=$(awk -v a="$instructions" -v b="$(field "$ip" 1)" 'BEGIN {printf "%.3f", a / b}')
-      ((messages > 0)) &&
-        per_message=$(awk -v a="$instructions" -v b="$(field "$ip" 1)" -v m="$messages" 'BEGIN {printf "%.0f", (a - b) / m}')
+    if [[ ${ip[0]} != failed ]]; then
+      ratio=$(awk -v a="${c[0]}" -v b="${ip[0]}" 'BEGIN {printf "%.3f", a / b}')
+      ((c[2] > 0)) && per_message=$(awk -v a="${c[0]}" -v b="${ip[0]}" -v m="${c[2]}" 'BEGIN {printf "%.0f", (a - b) / m}')
     fi
-    counts_rows+=("| $label | $renderer | $(millions "$instructions") | $ratio | $segments | $messages | $per_message |")
+    counts_rows+=("| $label | $renderer | $(millions "${c[0]}") | $ratio | ${c[1]} | ${c[2]} | $per_message |")
     cells=""
-    for k in 4 5 6 7 8; do cells+=" $(millions "$(field "$name" $k)") |"; done
+    for k in 3 4 5 6 7; do cells+=" $(millions "${c[k]}") |"; done
     layer_rows+=("| $label | $renderer |$cells")
-    if [[ $name != "$ip" ]] && ! failed "$ip"; then
+    if [[ $name != "$base.image-parallel" && ${ip[0]} != failed ]]; then
       cells=""
-      for k in 4 5 6 7 8; do cells+=" $(awk -v a="$(field "$name" $k)" -v b="$(field "$ip" $k)" 'BEGIN {printf "%+.1f", (a - b) / 1e6}') |"; done
+      for k in 3 4 5 6 7; do cells+=" $(awk -v a="${c[k]}" -v b="${ip[k]}" 'BEGIN {printf "%+.1f", (a - b) / 1e6}') |"; done
       layer_rows+=("| $label | $renderer − image-parallel |$cells")
     fi
   done
