@@ -101,7 +101,40 @@ class alignas(kCacheLine) SpscQueue {
     if constexpr (kCounting) bump(producer_.nanosBlockedFull, elapsedNanos(start));
   }
 
+  // In place, for large messages (a block of contributions): the free slot the next message goes to, to be
+  // written there and then published; null while the queue is full. Until publish(), the producer neither
+  // pushes nor claims again; a claimed slot may stay unpublished as long as the producer likes.
+  T* claim() {
+    const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
+    claimRefreshed_ = tail - headCache_ >= capacity_ || sampleDue(1);
+    if (claimRefreshed_) headCache_ = head_.load(std::memory_order_acquire);
+    if (tail - headCache_ < capacity_) return &slots_[tail & mask_];
+    if constexpr (kCounting) bump(producer_.refusedPushes);
+    return nullptr;
+  }
+  void publish() {
+    const std::uint64_t tail = tail_.load(std::memory_order_relaxed) + 1;
+    tail_.store(tail, std::memory_order_release);
+    if (consumerBell_ != nullptr) consumerBell_->ring();
+    if constexpr (kCounting) recordPush(tail, 1, claimRefreshed_);
+  }
+
   // ---- Consumer side: one thread only.
+
+  // In place: the oldest message, read where it lies until release() pops it; null when empty.
+  const T* front() {
+    const std::uint64_t head = head_.load(std::memory_order_relaxed);
+    if (tailCache_ == head) tailCache_ = tail_.load(std::memory_order_acquire);
+    if (tailCache_ == head) {
+      if constexpr (kCounting) bump(consumer_.emptyPops);
+      return nullptr;
+    }
+    return &slots_[head & mask_];
+  }
+  void release() {
+    head_.store(head_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+    if (producerBell_ != nullptr) producerBell_->ring();
+  }
 
   bool tryPop(T& out) { return tryPopN(std::span<T>(&out, 1)) == 1; }
 
@@ -280,6 +313,7 @@ class alignas(kCacheLine) SpscQueue {
   // Producer's line.
   alignas(kCacheLine) std::atomic<std::uint64_t> tail_{0};
   std::uint64_t headCache_ = 0;
+  bool claimRefreshed_ = false;  // claim() read the consumer's index (for the accounting at publish())
   [[no_unique_address]] std::conditional_t<kCounting, ProducerCounters, NoCounters> producer_;
 };
 

@@ -78,6 +78,32 @@ TEST(HostChannel, PartialBlockWaitsForFlush) {
   EXPECT_EQ(count(), 8u);
 }
 
+// A node fills its block in a slot of its queue; when the queue is full it fills a spare block instead,
+// shipped once the host has made room, after the blocks before it.
+TEST(HostChannel, ABlockStartedWhileTheQueueIsFullShipsAfterTheOthers) {
+  HostChannel<Contribution, 4> channel(1, 1);
+  auto sender = channel.sender(0);
+  std::vector<std::uint32_t> received;
+  auto drain = [&] {
+    return channel.drain([&](const Contribution& c) { received.push_back(c.sequence); });
+  };
+  for (std::uint32_t s = 0; s < 6; ++s) sender.send({0, s, {}});  // one block ships, the next waits
+  EXPECT_EQ(sender.unsent(), 2u);
+  EXPECT_EQ(drain(), 4u);
+  sender.flush();  // the spare, copied into the room made
+  for (std::uint32_t s = 6; s < 9; ++s) sender.send({0, s, {}});  // the queue is full again: the spare
+  EXPECT_EQ(drain(), 2u);
+  sender.flush();
+  EXPECT_EQ(drain(), 3u);
+  for (std::uint32_t s = 9; s < 12; ++s) sender.send({0, s, {}});  // in place again
+  sender.flush();
+  EXPECT_EQ(drain(), 3u);
+  std::vector<std::uint32_t> expected(12);
+  for (std::uint32_t s = 0; s < 12; ++s) expected[s] = s;
+  EXPECT_EQ(received, expected);
+  EXPECT_FALSE(channel.anyPending());
+}
+
 TEST(HostChannel, RejectsMismatchedDoorbells) {
   std::vector<Doorbell*> bells(3, nullptr);
   EXPECT_THROW((HostChannel<Contribution>(4, 2, bells)), std::invalid_argument);

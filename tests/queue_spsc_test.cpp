@@ -35,7 +35,9 @@ bool intact(const Message& m) {
   return m.check == mix(m.sequence) && m.payload.front() == ~m.sequence && m.payload.back() == m.sequence * 3;
 }
 
-enum class Mode { kSingle, kBatch, kSleeping };
+// kInPlace: the producer claims a slot, writes it there and publishes it; the consumer reads the front in
+// place and releases it (neither copies a message).
+enum class Mode { kSingle, kBatch, kSleeping, kInPlace };
 
 std::string modeName(Mode mode) {
   switch (mode) {
@@ -45,6 +47,8 @@ std::string modeName(Mode mode) {
       return "Batch";
     case Mode::kSleeping:
       return "Sleeping";
+    case Mode::kInPlace:
+      return "InPlace";
   }
   return "?";
 }
@@ -55,6 +59,7 @@ class SpscFuzz : public ::testing::TestWithParam<std::tuple<std::size_t, Mode>> 
 TEST_P(SpscFuzz, DeliversEveryMessageOnceInOrder) {
   const auto [capacity, mode] = GetParam();
   const std::uint64_t count = scaled(mode == Mode::kSingle ? 10'000'000 : 1'000'000, 100'000);
+  // (kInPlace reads a message where it lies: a torn slot shows in the copy taken before release.)
   Doorbell consumerBell, producerBell;
   SpscOptions options{.capacity = capacity};
   if (mode == Mode::kSleeping) {
@@ -77,6 +82,12 @@ TEST_P(SpscFuzz, DeliversEveryMessageOnceInOrder) {
         }
         queue.pushN(batch);
         sequence += n;
+      } else if (mode == Mode::kInPlace) {
+        Message* slot = nullptr;
+        while ((slot = queue.claim()) == nullptr) std::this_thread::yield();
+        *slot = makeMessage(sequence++);
+        producerSum += slot->check;
+        queue.publish();
       } else {
         const Message m = makeMessage(sequence++);
         producerSum += m.check;
@@ -88,7 +99,15 @@ TEST_P(SpscFuzz, DeliversEveryMessageOnceInOrder) {
   std::uint64_t consumerSum = 0, expected = 0, damaged = 0, misordered = 0;
   std::array<Message, 13> buffer;
   while (expected < count) {
-    const std::size_t n = mode == Mode::kBatch ? queue.popN(buffer) : (buffer[0] = queue.pop(), 1);
+    if (mode == Mode::kInPlace) {
+      const Message* m = nullptr;
+      while ((m = queue.front()) == nullptr) std::this_thread::yield();
+      buffer[0] = *m;
+      queue.release();
+    }
+    const std::size_t n = mode == Mode::kBatch ? queue.popN(buffer)
+                          : mode == Mode::kInPlace ? 1
+                                                   : (buffer[0] = queue.pop(), 1);
     for (std::size_t i = 0; i < n; ++i) {
       const Message& m = buffer[i];
       if (!intact(m)) ++damaged;
@@ -108,7 +127,8 @@ TEST_P(SpscFuzz, DeliversEveryMessageOnceInOrder) {
 
 INSTANTIATE_TEST_SUITE_P(Capacities, SpscFuzz,
                          ::testing::Combine(::testing::Values(1, 2, 3, 128, 4096),
-                                            ::testing::Values(Mode::kSingle, Mode::kBatch, Mode::kSleeping)),
+                                            ::testing::Values(Mode::kSingle, Mode::kBatch, Mode::kSleeping,
+                                                              Mode::kInPlace)),
                          [](const auto& info) {
                            return "Capacity" + std::to_string(std::get<0>(info.param)) +
                                   modeName(std::get<1>(info.param));
@@ -135,6 +155,47 @@ TEST(SpscQueue, IndicesWrapAroundAtAnyCapacity) {
     while (queue.tryPop(value)) ASSERT_EQ(value, nextOut++);
     EXPECT_EQ(nextOut, nextIn);
     EXPECT_GT(nextIn, 4 * capacity);  // went well past the wrap
+  }
+}
+
+// In place and by copy share the indices: a claimed slot stays unseen until published, claim finds no slot
+// in a full queue and front no message in an empty one, across the wrap at 2^64.
+TEST(SpscQueue, InPlaceSlotsFollowTheIndicesAcrossTheWrap) {
+  for (std::size_t capacity : {1, 2, 3, 128}) {
+    SCOPED_TRACE("capacity " + std::to_string(capacity));
+    SpscQueue<std::uint64_t> queue(
+        {.capacity = capacity, .firstIndex = std::numeric_limits<std::uint64_t>::max() - capacity});
+    std::uint64_t nextIn = 0, nextOut = 0;
+    for (int round = 0; round < 6; ++round) {
+      for (;;) {  // fill, alternately in place and by copy
+        if (nextIn % 2 == 0) {
+          std::uint64_t* slot = queue.claim();
+          if (slot == nullptr) break;
+          *slot = nextIn;
+          EXPECT_EQ(queue.size(), nextIn - nextOut);  // not yet published
+          queue.publish();
+        } else if (!queue.tryPush(nextIn)) {
+          break;
+        }
+        ++nextIn;
+      }
+      ASSERT_EQ(queue.size(), capacity);
+      EXPECT_EQ(queue.claim(), nullptr);
+      while (const std::uint64_t* front = queue.front()) {  // drain, alternately in place and by copy
+        if (nextOut % 2 == 0) {
+          ASSERT_EQ(*front, nextOut);
+          queue.release();
+        } else {
+          std::uint64_t value = 0;
+          ASSERT_TRUE(queue.tryPop(value));
+          ASSERT_EQ(value, nextOut);
+        }
+        ++nextOut;
+      }
+      ASSERT_EQ(nextOut, nextIn);
+      EXPECT_TRUE(queue.empty());
+    }
+    EXPECT_GT(nextIn, capacity + 1);  // went past the wrap
   }
 }
 
@@ -197,6 +258,33 @@ TEST(SpscQueue, AccountingCountsRefusalsHighWaterAndOccupancy) {
   EXPECT_EQ(stats.occupancyHistogram[8], 1u);
   EXPECT_EQ(stats.occupancyHistogram[12], 1u);
   EXPECT_EQ(stats.occupancyHistogram[kOccupancyBuckets - 1], 1u);
+}
+
+// A message claimed and published counts as a push, a claim finding the queue full as a refused push, a
+// front finding it empty as an empty pop.
+TEST(SpscQueue, AccountingCountsInPlaceSlotsAsPushesAndPops) {
+  SpscQueue<int, Accounting::kOn> queue(4);
+  for (int i = 0; i < 4; ++i) {
+    int* slot = queue.claim();
+    ASSERT_NE(slot, nullptr);
+    *slot = i;
+    queue.publish();
+  }
+  EXPECT_EQ(queue.claim(), nullptr);
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_NE(queue.front(), nullptr);
+    queue.release();
+  }
+  EXPECT_EQ(queue.front(), nullptr);
+
+  const QueueStats stats = queue.stats();
+  EXPECT_EQ(stats.pushed, 4u);
+  EXPECT_EQ(stats.popped, 4u);
+  EXPECT_EQ(stats.refusedPushes, 1u);
+  EXPECT_EQ(stats.emptyPops, 1u);
+  EXPECT_EQ(stats.highWater, 4u);
+  EXPECT_EQ(stats.occupancySamples, 4u);
+  EXPECT_DOUBLE_EQ(stats.meanOccupancy(), 2.5);
 }
 
 // Accounting keeps the cached-index trick: a larger queue samples its occupancy every capacity/8 messages
