@@ -65,6 +65,7 @@ RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int l
     }
   }
   objectCount_ = std::size_t(std::count(held.begin(), held.end(), 1));
+  oneCell_ = columns_.size() == 1 && columns_.front().depthSplits.empty();
 }
 
 int RegionCells::locateIn(const std::vector<double>& bounds, double value) {

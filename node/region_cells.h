@@ -52,7 +52,15 @@ class RegionCells {
   // returns false (Stopped), tEnd is reached (Finished), or the ray leaves the region (Exited, with exit).
   template <class Visit>
   WalkResult walk(const EyeFrameRay& ray, double t, double tEnd, int column, int row, Visit&& visit,
-                  RegionExit& exit, std::uint64_t& cellSteps) const;
+                  RegionExit& exit, std::uint64_t& cellSteps) const {
+    return oneCell_ ? walkOneCell(ray, t, tEnd, visit, exit, cellSteps)
+                    : walkColumns(ray, t, tEnd, column, row, visit, exit, cellSteps);
+  }
+  // The walk through columns and their cells, whatever the region; walk() takes it but for a region of one
+  // cell (a BVH region's), whose single pass it makes with the same arithmetic.
+  template <class Visit>
+  WalkResult walkColumns(const EyeFrameRay& ray, double t, double tEnd, int column, int row, Visit&& visit,
+                         RegionExit& exit, std::uint64_t& cellSteps) const;
 
   // Super-cell column and row containing the ray at t (clamped into the region: 3.3.1, entry cell).
   void locate(const EyeFrameRay& ray, double t, int& column, int& row) const;
@@ -68,19 +76,48 @@ class RegionCells {
   };
   const Column& column(int i, int j) const { return columns_[std::size_t(j) * columnsX_ + i]; }
   static int locateIn(const std::vector<double>& bounds, double value);
+  template <class Visit>
+  WalkResult walkOneCell(const EyeFrameRay& ray, double t, double tEnd, Visit&& visit, RegionExit& exit,
+                         std::uint64_t& cellSteps) const;
 
   // bounds_[axis]: screen coordinates of the super-cell boundaries (first/last may be infinite)
   std::vector<double> bounds_[2];
   std::vector<int> sampleBounds_[2];
   std::vector<Column> columns_;
   int columnsX_ = 0;
+  bool oneCell_ = false;  // one super-cell, no depth cut: the region is a single cell
   std::size_t cellCount_ = 0;
   std::size_t objectCount_ = 0;
 };
 
+// walkColumns' first pass through a region of one cell: the column's faces ahead, the cell's interval, and
+// out through the faces crossed where it ends (a crossing rounded behind t leaves at once).
 template <class Visit>
-WalkResult RegionCells::walk(const EyeFrameRay& ray, double t, double tEnd, int i, int j, Visit&& visit,
-                             RegionExit& exit, std::uint64_t& cellSteps) const {
+WalkResult RegionCells::walkOneCell(const EyeFrameRay& ray, double t, double tEnd, Visit&& visit,
+                                    RegionExit& exit, std::uint64_t& cellSteps) const {
+  const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
+  const double tS = sDir > 0   ? ray.planeCrossing(0, bounds_[0][1])
+                    : sDir < 0 ? ray.planeCrossing(0, bounds_[0][0])
+                               : core::kInfinity;
+  const double tQ = qDir > 0   ? ray.planeCrossing(1, bounds_[1][1])
+                    : qDir < 0 ? ray.planeCrossing(1, bounds_[1][0])
+                               : core::kInfinity;
+  const double tCell = std::max(t, std::min({tS, tQ, tEnd}));
+  ++cellSteps;
+  const std::vector<std::uint32_t>& objects = columns_.front().cellObjects.front();
+  if (tCell > t && !objects.empty() && !visit(t, tCell, objects)) return WalkResult::Stopped;
+  if (tEnd <= tS && tEnd <= tQ) return WalkResult::Finished;
+  const int sStep = tS <= tCell && sDir != 0 ? sDir : 0;
+  const int qStep = tQ <= tCell && qDir != 0 ? qDir : 0;
+  if (sStep == 0 && qStep == 0)  // no face crossed (a NaN): on as walkColumns would go on
+    return walkColumns(ray, tCell, tEnd, 0, 0, visit, exit, cellSteps);
+  exit = RegionExit{tCell, sStep, qStep};
+  return WalkResult::Exited;
+}
+
+template <class Visit>
+WalkResult RegionCells::walkColumns(const EyeFrameRay& ray, double t, double tEnd, int i, int j, Visit&& visit,
+                                    RegionExit& exit, std::uint64_t& cellSteps) const {
   const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
   const int zDir = (ray.d.z > 0) - (ray.d.z < 0);
   for (;;) {

@@ -193,6 +193,63 @@ TEST(RegionCells, CellsFollowTheirListsBoxesWhateverItsOrder) {
   EXPECT_GT(compared, 100);
 }
 
+// A region of one cell (a BVH region's) takes walk()'s shortcut: the same intervals, the same end, the same
+// exit, the same steps as the general walk through columns, bit for bit, for rays starting anywhere in it
+// or outside it (a walk locates them into the region), stopped or not, with and without objects.
+TEST(RegionCells, AOneCellRegionWalksAsTheGeneralWalkDoes) {
+  Fixture f;
+  const std::vector<std::uint32_t> none;
+  const std::vector<EyeBox> noBoxes;
+  struct Visit {
+    double ta, tb;
+    std::size_t objects;
+    bool operator==(const Visit&) const = default;
+  };
+  int exited = 0, finished = 0, stopped = 0;
+  for (const SampleRect& area : {SampleRect{16, 48, 12, 36}, SampleRect{0, 64, 0, 48}, SampleRect{0, 5, 40, 48}})
+    for (bool withObjects : {true, false}) {
+      const RegionCells cells(area, f.lines, 0, false, withObjects ? f.all : none, withObjects ? f.boxes : noBoxes);
+      ASSERT_EQ(cells.cellCount(), 1u);
+      std::mt19937 random(13);
+      for (int n = 0; n < 3000; ++n) {
+        const EyeFrameRay er = EyeFrameRay::of(rayNearTheMiddle(random), f.view);
+        const double t0 = n % 3 == 0 ? 0.0 : 0.1 * (n % 7);
+        if (!er.inFront(t0)) continue;
+        const double tEnd = n % 5 == 0 ? t0 + 0.5 : er.partEnd(t0);
+        const bool stopAtTheFirst = n % 2 == 0;
+        auto walked = [&](bool general, RegionExit& exit, std::uint64_t& steps, WalkResult& result) {
+          std::vector<Visit> visits;
+          auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
+            visits.push_back(Visit{ta, tb, objects.size()});
+            return !stopAtTheFirst;
+          };
+          result = general ? cells.walkColumns(er, t0, tEnd, 0, 0, visit, exit, steps)
+                           : cells.walk(er, t0, tEnd, 0, 0, visit, exit, steps);
+          return visits;
+        };
+        RegionExit shortExit, generalExit;
+        std::uint64_t shortSteps = 0, generalSteps = 0;
+        WalkResult shortResult, generalResult;
+        const std::vector<Visit> shortVisits = walked(false, shortExit, shortSteps, shortResult);
+        const std::vector<Visit> generalVisits = walked(true, generalExit, generalSteps, generalResult);
+        ASSERT_EQ(shortResult, generalResult) << "ray " << n;
+        ASSERT_EQ(shortVisits, generalVisits) << "ray " << n;
+        ASSERT_EQ(shortSteps, generalSteps) << "ray " << n;
+        if (shortResult == WalkResult::Exited) {
+          ASSERT_EQ(shortExit.t, generalExit.t) << "ray " << n;
+          ASSERT_EQ(shortExit.sStep, generalExit.sStep) << "ray " << n;
+          ASSERT_EQ(shortExit.qStep, generalExit.qStep) << "ray " << n;
+        }
+        exited += shortResult == WalkResult::Exited;
+        finished += shortResult == WalkResult::Finished;
+        stopped += shortResult == WalkResult::Stopped;
+      }
+    }
+  EXPECT_GT(exited, 1000);
+  EXPECT_GT(finished, 100);
+  EXPECT_GT(stopped, 1000);
+}
+
 TEST(RegionCells, RefuseObjectsWithoutAnEyeBoxEach) {
   Fixture f;
   std::vector<EyeBox> fewer(f.boxes.begin(), f.boxes.end() - 1);
