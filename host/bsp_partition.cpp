@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace raycube::host {
@@ -57,6 +59,7 @@ class LineSums {
 struct Splitter {
   LoadMetric metric;
   std::vector<node::SampleRect> leaves;
+  bool spareCore;  // the next cut may hand one of its sides to another core
 
   void split(const node::SampleRect& r, int processors, const std::vector<ScreenSegment>& pieces) {
     if (processors == 1) {
@@ -116,8 +119,22 @@ struct Splitter {
     node::SampleRect first = r, second = r;
     (axis == 0 ? first.x1 : first.y1) = best;
     (axis == 0 ? second.x0 : second.y0) = best;
-    split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
-    split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
+    if (!spareCore) {
+      split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
+      split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
+      return;
+    }
+    // The first cut's two sides on two cores (every later cut stays on its side's core): each is cut exactly
+    // as it would be alone, and its leaves come before the second's, the same partition however many cores
+    // ran it. Mount 6's BSP at 4 x 4 took 10 ms on one core with the other idle.
+    Splitter before{metric, {}, false}, beyond{metric, {}, false};
+    std::future<void> beforeDone = std::async(std::launch::async, [&] {
+      before.split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
+    });
+    beyond.split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
+    beforeDone.get();
+    for (const Splitter* side : {&before, &beyond})
+      leaves.insert(leaves.end(), side->leaves.begin(), side->leaves.end());
   }
 
   // One side of a cut: the line `at` across `axis`, the side beyond it or before it.
@@ -138,6 +155,7 @@ struct Splitter {
       return side->beyond ? std::max(a, b) < side->at - margin : std::min(a, b) > side->at + margin;
     };
     std::vector<ScreenSegment> kept;
+    kept.reserve(pieces.size());
     ScreenSegment piece;
     for (const ScreenSegment& s : pieces)
       if (!elsewhere(s) && clipSegment(s, r.x0, r.y0, r.x1, r.y1, metric, piece)) kept.push_back(piece);
@@ -194,10 +212,10 @@ LineLoads loadsAcrossLines(const std::vector<ScreenSegment>& pieces, int axis, i
 }
 
 std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
-                                           const LoadSample& sample, LoadMetric metric) {
+                                           const LoadSample& sample, LoadMetric metric, int cores) {
   if (processors < 1 || (long long)samplesX * samplesY < processors)
     throw std::invalid_argument("BSP: more processors than samples");
-  Splitter splitter{metric, {}};
+  Splitter splitter{metric, {}, (cores > 0 ? unsigned(cores) : std::thread::hardware_concurrency()) > 1};
   const node::SampleRect screen{0, samplesX, 0, samplesY};
   splitter.split(screen, processors, splitter.clipAll(sample.segments, screen));
   return splitter.leaves;

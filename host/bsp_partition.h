@@ -11,8 +11,9 @@
 
 namespace raycube::host {
 
+// cores: how many the cutting may use (0: the host's); the partition is the same for any number.
 std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
-                                           const LoadSample& sample, LoadMetric metric);
+                                           const LoadSample& sample, LoadMetric metric, int cores = 0);
 
 // The load on each side of every candidate line of an area [lo, hi) along `axis` (0: x, the lines x = k;
 // 1: y), k = lo + 1 ... hi - 1: below[k - lo - 1] and above[k - lo - 1]. As the BSP weighs a line: the ray

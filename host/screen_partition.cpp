@@ -1,6 +1,7 @@
 #include "host/screen_partition.h"
 
 #include <algorithm>
+#include <future>
 #include <numeric>
 
 #include "host/bsp_partition.h"
@@ -66,9 +67,13 @@ ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
   if (machine.balance == Balance::Uniform || !fits.bsp()) return weighed(uniformGrid(view, machine));
   // Only the partition made gets its region map: its table of every sample's owner is 128 fresh pages at
   // 512 x 512.
-  Areas balanced = equalLoads(view, load, machine), grid = uniformGrid(view, machine);
+  // The grid weighed on another core while the BSP cuts.
+  Areas grid = uniformGrid(view, machine);
+  std::future<AreaEstimates> weighingGrid =
+      std::async(std::launch::async, [&] { return estimateAreas(grid.areas, load, machine.loadMetric); });
+  Areas balanced = equalLoads(view, load, machine);
   AreaEstimates balancedLoads = estimateAreas(balanced.areas, load, machine.loadMetric);
-  AreaEstimates gridLoads = estimateAreas(grid.areas, load, machine.loadMetric);
+  AreaEstimates gridLoads = weighingGrid.get();
   const PartitionForecast forecast{cores, estimatedSpan(balancedLoads.loads, cores),
                                    estimatedSpan(gridLoads.loads, cores)};
   const bool gridWins = forecast.uniformSpan < forecast.bspSpan * (1 - kSpansEqualWithin);

@@ -49,6 +49,25 @@ TEST(Bsp, TilesTheScreenForAnyProcessorCount) {
   EXPECT_THROW(bspPartition(2, 2, 5, LoadSample{}, LoadMetric::Rays), std::invalid_argument);
 }
 
+// The first cut's sides are cut on two cores where there are two: the same areas, in the same order, as on
+// one, for either metric and any processor count.
+TEST(Bsp, TheSameAreasOnOneCoreOrTwo) {
+  const LoadSample sample = randomSegments(4000, 300, 200, 5);
+  for (int p : {2, 3, 16, 17, 64})
+    for (LoadMetric metric : {LoadMetric::Rays, LoadMetric::Cost}) {
+      const auto one = bspPartition(300, 200, p, sample, metric, 1);
+      const auto two = bspPartition(300, 200, p, sample, metric, 2);
+      ASSERT_EQ(one.size(), two.size());
+      for (std::size_t k = 0; k < one.size(); ++k) {
+        EXPECT_EQ(one[k].x0, two[k].x0) << p << " processors, area " << k;
+        EXPECT_EQ(one[k].x1, two[k].x1) << p << " processors, area " << k;
+        EXPECT_EQ(one[k].y0, two[k].y0) << p << " processors, area " << k;
+        EXPECT_EQ(one[k].y1, two[k].y1) << p << " processors, area " << k;
+      }
+    }
+  EXPECT_THROW(bspPartition(2, 2, 5, LoadSample{}, LoadMetric::Rays, 2), std::invalid_argument);
+}
+
 // With the load concentrated on one side, the BSP gives that side small areas.
 TEST(Bsp, FollowsTheLoad) {
   LoadSample sample;
