@@ -116,8 +116,8 @@ WalkResult RegionCells::walkOneCell(const EyeFrameRay& ray, double t, double tEn
 }
 
 template <class Visit>
-WalkResult RegionCells::walkColumns(const EyeFrameRay& ray, double t, double tEnd, int i, int j, Visit&& visit,
-                                    RegionExit& exit, std::uint64_t& cellSteps) const {
+WalkResult RegionCells::walkColumns(const EyeFrameRay& ray, double t, double tEnd, int i, int j,
+                                    Visit&& visit, RegionExit& exit, std::uint64_t& cellSteps) const {
   const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
   const int zDir = (ray.d.z > 0) - (ray.d.z < 0);
   for (;;) {

@@ -84,13 +84,11 @@ TEST(HostChannel, ABlockStartedWhileTheQueueIsFullShipsAfterTheOthers) {
   HostChannel<Contribution, 4> channel(1, 1);
   auto sender = channel.sender(0);
   std::vector<std::uint32_t> received;
-  auto drain = [&] {
-    return channel.drain([&](const Contribution& c) { received.push_back(c.sequence); });
-  };
+  auto drain = [&] { return channel.drain([&](const Contribution& c) { received.push_back(c.sequence); }); };
   for (std::uint32_t s = 0; s < 6; ++s) sender.send({0, s, {}});  // one block ships, the next waits
   EXPECT_EQ(sender.unsent(), 2u);
   EXPECT_EQ(drain(), 4u);
-  sender.flush();  // the spare, copied into the room made
+  sender.flush();                                                 // the spare, copied into the room made
   for (std::uint32_t s = 6; s < 9; ++s) sender.send({0, s, {}});  // the queue is full again: the spare
   EXPECT_EQ(drain(), 2u);
   sender.flush();

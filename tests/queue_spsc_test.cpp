@@ -105,7 +105,7 @@ TEST_P(SpscFuzz, DeliversEveryMessageOnceInOrder) {
       buffer[0] = *m;
       queue.release();
     }
-    const std::size_t n = mode == Mode::kBatch ? queue.popN(buffer)
+    const std::size_t n = mode == Mode::kBatch     ? queue.popN(buffer)
                           : mode == Mode::kInPlace ? 1
                                                    : (buffer[0] = queue.pop(), 1);
     for (std::size_t i = 0; i < n; ++i) {
@@ -235,56 +235,49 @@ TEST(SpscQueue, RejectsZeroCapacity) {
   EXPECT_THROW(SpscQueue<int>(0), std::invalid_argument);
 }
 
+// Filled to the brim (occupancies 1 to 4), refused twice, drained, found empty once; by copy or in place (a
+// slot claimed and published is a push, a claim finding the queue full a refused push, a front finding it
+// empty an empty pop), the same accounting.
 TEST(SpscQueue, AccountingCountsRefusalsHighWaterAndOccupancy) {
-  SpscQueue<int, Accounting::kOn> queue(4);
-  for (int i = 0; i < 4; ++i) ASSERT_TRUE(queue.tryPush(i));  // occupancies 1, 2, 3, 4
-  EXPECT_FALSE(queue.tryPush(9));
-  EXPECT_FALSE(queue.tryPush(9));
-  int value = 0;
-  for (int i = 0; i < 4; ++i) ASSERT_TRUE(queue.tryPop(value));
-  EXPECT_FALSE(queue.tryPop(value));
+  for (bool inPlace : {false, true}) {
+    SCOPED_TRACE(inPlace ? "in place" : "by copy");
+    SpscQueue<int, Accounting::kOn> queue(4);
+    auto push = [&](int value) {
+      if (!inPlace) return queue.tryPush(value);
+      int* slot = queue.claim();
+      if (slot == nullptr) return false;
+      *slot = value;
+      queue.publish();
+      return true;
+    };
+    auto pop = [&] {
+      int value = 0;
+      if (!inPlace) return queue.tryPop(value);
+      if (queue.front() == nullptr) return false;
+      queue.release();
+      return true;
+    };
+    for (int i = 0; i < 4; ++i) ASSERT_TRUE(push(i));
+    EXPECT_FALSE(push(9));
+    EXPECT_FALSE(push(9));
+    for (int i = 0; i < 4; ++i) ASSERT_TRUE(pop());
+    EXPECT_FALSE(pop());
 
-  const QueueStats stats = queue.stats();
-  EXPECT_EQ(stats.capacity, 4u);
-  EXPECT_EQ(stats.pushed, 4u);
-  EXPECT_EQ(stats.popped, 4u);
-  EXPECT_EQ(stats.refusedPushes, 2u);
-  EXPECT_EQ(stats.emptyPops, 1u);
-  EXPECT_EQ(stats.highWater, 4u);
-  EXPECT_EQ(stats.occupancySamples, 4u);
-  EXPECT_DOUBLE_EQ(stats.meanOccupancy(), 2.5);
-  // Occupancy 1/4 -> bucket 4, 2/4 -> 8, 3/4 -> 12, full -> the last bucket.
-  EXPECT_EQ(stats.occupancyHistogram[4], 1u);
-  EXPECT_EQ(stats.occupancyHistogram[8], 1u);
-  EXPECT_EQ(stats.occupancyHistogram[12], 1u);
-  EXPECT_EQ(stats.occupancyHistogram[kOccupancyBuckets - 1], 1u);
-}
-
-// A message claimed and published counts as a push, a claim finding the queue full as a refused push, a
-// front finding it empty as an empty pop.
-TEST(SpscQueue, AccountingCountsInPlaceSlotsAsPushesAndPops) {
-  SpscQueue<int, Accounting::kOn> queue(4);
-  for (int i = 0; i < 4; ++i) {
-    int* slot = queue.claim();
-    ASSERT_NE(slot, nullptr);
-    *slot = i;
-    queue.publish();
+    const QueueStats stats = queue.stats();
+    EXPECT_EQ(stats.capacity, 4u);
+    EXPECT_EQ(stats.pushed, 4u);
+    EXPECT_EQ(stats.popped, 4u);
+    EXPECT_EQ(stats.refusedPushes, 2u);
+    EXPECT_EQ(stats.emptyPops, 1u);
+    EXPECT_EQ(stats.highWater, 4u);
+    EXPECT_EQ(stats.occupancySamples, 4u);
+    EXPECT_DOUBLE_EQ(stats.meanOccupancy(), 2.5);
+    // Occupancy 1/4 -> bucket 4, 2/4 -> 8, 3/4 -> 12, full -> the last bucket.
+    EXPECT_EQ(stats.occupancyHistogram[4], 1u);
+    EXPECT_EQ(stats.occupancyHistogram[8], 1u);
+    EXPECT_EQ(stats.occupancyHistogram[12], 1u);
+    EXPECT_EQ(stats.occupancyHistogram[kOccupancyBuckets - 1], 1u);
   }
-  EXPECT_EQ(queue.claim(), nullptr);
-  for (int i = 0; i < 4; ++i) {
-    ASSERT_NE(queue.front(), nullptr);
-    queue.release();
-  }
-  EXPECT_EQ(queue.front(), nullptr);
-
-  const QueueStats stats = queue.stats();
-  EXPECT_EQ(stats.pushed, 4u);
-  EXPECT_EQ(stats.popped, 4u);
-  EXPECT_EQ(stats.refusedPushes, 1u);
-  EXPECT_EQ(stats.emptyPops, 1u);
-  EXPECT_EQ(stats.highWater, 4u);
-  EXPECT_EQ(stats.occupancySamples, 4u);
-  EXPECT_DOUBLE_EQ(stats.meanOccupancy(), 2.5);
 }
 
 // Accounting keeps the cached-index trick: a larger queue samples its occupancy every capacity/8 messages

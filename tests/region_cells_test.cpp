@@ -206,9 +206,11 @@ TEST(RegionCells, AOneCellRegionWalksAsTheGeneralWalkDoes) {
     bool operator==(const Visit&) const = default;
   };
   int exited = 0, finished = 0, stopped = 0;
-  for (const SampleRect& area : {SampleRect{16, 48, 12, 36}, SampleRect{0, 64, 0, 48}, SampleRect{0, 5, 40, 48}})
+  for (const SampleRect& area :
+       {SampleRect{16, 48, 12, 36}, SampleRect{0, 64, 0, 48}, SampleRect{0, 5, 40, 48}})
     for (bool withObjects : {true, false}) {
-      const RegionCells cells(area, f.lines, 0, false, withObjects ? f.all : none, withObjects ? f.boxes : noBoxes);
+      const RegionCells cells(area, f.lines, 0, false, withObjects ? f.all : none,
+                              withObjects ? f.boxes : noBoxes);
       ASSERT_EQ(cells.cellCount(), 1u);
       std::mt19937 random(13);
       for (int n = 0; n < 3000; ++n) {
