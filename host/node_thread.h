@@ -6,6 +6,7 @@
 
 #include "host/machine.h"
 #include "node/logical_processor.h"
+#include "node/scheduling.h"
 
 namespace raycube::host {
 
@@ -13,7 +14,7 @@ template <class Real, class Interconnect>
 void driveNodeThread(node::LogicalProcessor<Real>& node, Interconnect& interconnect, int id, ProcessorReport& times) {
   using Clock = std::chrono::steady_clock;
   for (;;) {
-    const node::Step step = node.step();
+    const node::Step step = node.step(node::scheduling::kPrimariesPerStep);
     interconnect.ringNeighbours(id);
     if (step == node::Step::Terminated) return;
     if (step == node::Step::Worked) continue;

@@ -71,13 +71,13 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
 
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
 template <class Real>
-Step LogicalProcessor<Real>::step() {
+Step LogicalProcessor<Real>::step(int primaries) {
   if (transport_.terminated()) return Step::Terminated;
   bool progressed = flushOverflow();
   const std::size_t n = transport_.receive(inbox_);
   for (std::size_t k = 0; k < n; ++k) onReceived(inbox_[k]);
   progressed |= n > 0;
-  if (n == 0) progressed |= shootIfAllowed();
+  if (n == 0) progressed |= shootIfAllowed(primaries);
   reportBacklog();
   if (!progressed) return idleStep();
   publishProgress();
@@ -91,13 +91,19 @@ bool LogicalProcessor<Real>::primariesAllowed() const {
   return backlog() < scheduling::kBacklogLimit && !transport_.primariesHeld();
 }
 
-// The next primary ray, if back-pressure allows it; counts the steps that found the machine holding it back.
+// Up to `primaries` more primary rays, each as back-pressure allows; counts the steps that found the machine
+// holding back their first.
 template <class Real>
-bool LogicalProcessor<Real>::shootIfAllowed() {
-  if (!primariesLeft()) return false;
-  if (primariesAllowed()) return shootNextPrimary();
-  stats_.primariesHeld += transport_.primariesHeld();
-  return false;
+bool LogicalProcessor<Real>::shootIfAllowed(int primaries) {
+  int shot = 0;
+  while (shot < primaries && primariesLeft()) {
+    if (!primariesAllowed()) {
+      if (shot == 0) stats_.primariesHeld += transport_.primariesHeld();
+      break;
+    }
+    shot += shootNextPrimary() ? 1 : 0;
+  }
+  return shot > 0;
 }
 
 template <class Real>

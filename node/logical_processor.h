@@ -96,7 +96,9 @@ class LogicalProcessor {
   using TracedRay = core::BasicTracedRay<Real>;
   LogicalProcessor(const MachineContext& context, NodeSetup setup, BasicTransport<Real>& transport);
 
-  Step step();
+  // primaries: how many primary rays the step may shoot when no ray arrived (one, as the paper's synthesis
+  // task, where a driver's clock charges each step; more where steps cost only their bookkeeping).
+  Step step(int primaries = 1);
   // Something arrived that the next step would act on: a ray, room in a FIFO it has rays for, the token,
   // or termination. Reads only the transport's state: a driver may call it from a wait predicate.
   bool readyToStep() const;
@@ -113,7 +115,7 @@ class LogicalProcessor {
   bool shootNextPrimary();
   bool primariesLeft() const;
   bool primariesAllowed() const;
-  bool shootIfAllowed();
+  bool shootIfAllowed(int primaries);
   void evaluate(Message message, bool primary);
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);

@@ -35,6 +35,13 @@ inline constexpr std::size_t machineBacklogRelease(std::size_t limit) {
 // 294 / 258 k, mount 6 2.14 / 2.14 / 2.13 M, whose 2.1 M exits would pay 16 boxes' tests for nothing.
 inline constexpr std::size_t kSceneBoundsBoxes = 4;
 
+// Primary rays a processor's thread shoots in one step when no ray arrived: its step's bookkeeping (a scan
+// of its incoming FIFOs, its overflow lists, back-pressure, progress, ringing its neighbours) was 500
+// instructions, as much as a segment's walk, paid once per primary ray on scenes where most rays are.
+// Received rays still come first at every step, and back-pressure is asked before every primary. The
+// emulated machine's steps shoot one, as the paper's synthesis task (3.5.2): its clock charges by step.
+inline constexpr int kPrimariesPerStep = 8;
+
 // How a waiting thread waits: spin a little (a handoff from the other core), yield so the thread that
 // would unblock it can run, then sleep on its doorbell.
 struct SpinThenYield {

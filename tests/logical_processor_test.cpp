@@ -2,6 +2,7 @@
 // goes in (primary rays, received rays, the token) and what comes out (rays, contributions, counts),
 // with no thread, no clock and no waiting (node/logical_processor.h).
 #include "node/logical_processor.h"
+#include "node/scheduling.h"
 
 #include <gtest/gtest.h>
 
@@ -153,6 +154,48 @@ TEST_F(LogicalProcessorTest, OneProcessorTracesTheWholeImageAndProvesItsOwnTermi
   EXPECT_EQ(core::compareImages(imageOf(context, net.contributions), referenceImage()).maxAbs, 0.0);
   const NodeStats stats = node.stats();
   for (int k = 0; k < core::kRayKinds; ++k) EXPECT_EQ(stats.spawned[k], stats.finished[k]) << k;
+}
+
+// A step with nothing received shoots up to the primaries it is given (a thread's steps shoot
+// scheduling::kPrimariesPerStep; the emulated machine's, one): a eighth of the steps, the same image.
+TEST_F(LogicalProcessorTest, AStepShootsUpToItsPrimariesWhenNothingArrived) {
+  const MachineContext context = contextFor(1, 1);
+  for (int primaries : {1, 8}) {
+    SCOPED_TRACE(std::to_string(primaries) + " primaries a step");
+    FakeInterconnect net(context.regions, 4);
+    FakeTransport transport(net, 0);
+    LogicalProcessor<double> node(context, setupFor(context, 0), transport);
+    int worked = 0;
+    Step s;
+    while ((s = node.step(primaries)) != Step::Terminated) {
+      ASSERT_LT(worked, 10 * kSide * kSide) << "the node never terminated";
+      worked += s == Step::Worked;
+    }
+    const int shooting = (kSide * kSide + primaries - 1) / primaries;
+    EXPECT_GE(worked, shooting);
+    EXPECT_LE(worked, shooting + 8);  // and the token's rounds
+    EXPECT_EQ(core::compareImages(imageOf(context, net.contributions), referenceImage()).maxAbs, 0.0);
+  }
+}
+
+// Back-pressure is asked before every primary a step shoots: a processor whose neighbour never takes a ray
+// shoots the same primaries, and leaves the same rays waiting, however many primaries its steps may shoot.
+TEST_F(LogicalProcessorTest, BackPressureHoldsEveryPrimaryOfAStep) {
+  const MachineContext context = contextFor(2, 1);
+  auto heldWith = [&](int primaries) {
+    FakeInterconnect net(context.regions, 1);
+    FakeTransport left(net, 0), right(net, 1);
+    LogicalProcessor<double> node0(context, setupFor(context, 0), left);
+    Step s = Step::Worked;
+    for (int k = 0; k < 100000 && s == Step::Worked; ++k) s = node0.step(primaries);
+    EXPECT_EQ(s, Step::Waiting);
+    EXPECT_TRUE(node0.blocked());
+    return std::pair{node0.stats().overflowHighWater, node0.stats().spawned[0]};
+  };
+  const auto one = heldWith(1);
+  EXPECT_GE(one.first, scheduling::kBacklogLimit);
+  EXPECT_EQ(heldWith(8), one);
+  EXPECT_EQ(heldWith(64), one);
 }
 
 TEST_F(LogicalProcessorTest, AFullNeighbourBlocksTheSenderUntilItHasRoom) {
