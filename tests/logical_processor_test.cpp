@@ -2,7 +2,6 @@
 // goes in (primary rays, received rays, the token) and what comes out (rays, contributions, counts),
 // with no thread, no clock and no waiting (node/logical_processor.h).
 #include "node/logical_processor.h"
-#include "node/scheduling.h"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +12,7 @@
 #include "core/balls.h"
 #include "host/framebuffer.h"
 #include "host/sequential_renderers.h"
+#include "node/scheduling.h"
 
 namespace raycube::node {
 namespace {
