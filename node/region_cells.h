@@ -76,6 +76,13 @@ class RegionCells {
   };
   const Column& column(int i, int j) const { return columns_[std::size_t(j) * columnsX_ + i]; }
   static int locateIn(const std::vector<double>& bounds, double value);
+  // Where the ray meets the face of super-cell column or row `index` ahead of it along `axis` (dir: the sign
+  // of its screen coordinate's change); infinity where it moves along neither way.
+  double faceAhead(const EyeFrameRay& ray, int axis, int index, int dir) const {
+    return dir > 0   ? ray.planeCrossing(axis, bounds_[axis][index + 1])
+           : dir < 0 ? ray.planeCrossing(axis, bounds_[axis][index])
+                     : core::kInfinity;
+  }
   template <class Visit>
   WalkResult walkOneCell(const EyeFrameRay& ray, double t, double tEnd, Visit&& visit, RegionExit& exit,
                          std::uint64_t& cellSteps) const;
@@ -96,12 +103,7 @@ template <class Visit>
 WalkResult RegionCells::walkOneCell(const EyeFrameRay& ray, double t, double tEnd, Visit&& visit,
                                     RegionExit& exit, std::uint64_t& cellSteps) const {
   const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
-  const double tS = sDir > 0   ? ray.planeCrossing(0, bounds_[0][1])
-                    : sDir < 0 ? ray.planeCrossing(0, bounds_[0][0])
-                               : core::kInfinity;
-  const double tQ = qDir > 0   ? ray.planeCrossing(1, bounds_[1][1])
-                    : qDir < 0 ? ray.planeCrossing(1, bounds_[1][0])
-                               : core::kInfinity;
+  const double tS = faceAhead(ray, 0, 0, sDir), tQ = faceAhead(ray, 1, 0, qDir);
   const double tCell = std::max(t, std::min({tS, tQ, tEnd}));
   ++cellSteps;
   const std::vector<std::uint32_t>& objects = columns_.front().cellObjects.front();
@@ -123,12 +125,7 @@ WalkResult RegionCells::walkColumns(const EyeFrameRay& ray, double t, double tEn
   for (;;) {
     // The column's exit: the face ahead along s, along q, or the end of the interval. A crossing computed
     // behind t (rounding) leaves the column at once with an empty interval.
-    const double tS = sDir > 0   ? ray.planeCrossing(0, bounds_[0][i + 1])
-                      : sDir < 0 ? ray.planeCrossing(0, bounds_[0][i])
-                                 : core::kInfinity;
-    const double tQ = qDir > 0   ? ray.planeCrossing(1, bounds_[1][j + 1])
-                      : qDir < 0 ? ray.planeCrossing(1, bounds_[1][j])
-                                 : core::kInfinity;
+    const double tS = faceAhead(ray, 0, i, sDir), tQ = faceAhead(ray, 1, j, qDir);
     const double tColumn = std::max(t, std::min({tS, tQ, tEnd}));
     const Column& col = column(i, j);
     // Depth partitioning: walk the column's cells in z order.

@@ -106,17 +106,17 @@ class alignas(kCacheLine) SpscQueue {
   // pushes nor claims again; a claimed slot may stay unpublished as long as the producer likes.
   T* claim() {
     const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
-    claimRefreshed_ = tail - headCache_ >= capacity_ || sampleDue(1);
-    if (claimRefreshed_) headCache_ = head_.load(std::memory_order_acquire);
-    if (tail - headCache_ < capacity_) return &slots_[tail & mask_];
+    bool refreshed = false;
+    const bool free = room(tail, 1, refreshed) > 0;
+    if constexpr (kCounting) producer_.claimRefreshed = refreshed;
+    if (free) return &slots_[tail & mask_];
     if constexpr (kCounting) bump(producer_.refusedPushes);
     return nullptr;
   }
   void publish() {
     const std::uint64_t tail = tail_.load(std::memory_order_relaxed) + 1;
-    tail_.store(tail, std::memory_order_release);
-    if (consumerBell_ != nullptr) consumerBell_->ring();
-    if constexpr (kCounting) recordPush(tail, 1, claimRefreshed_);
+    publishTo(tail);
+    if constexpr (kCounting) recordPush(tail, 1, producer_.claimRefreshed);
   }
 
   // ---- Consumer side: one thread only.
@@ -124,17 +124,13 @@ class alignas(kCacheLine) SpscQueue {
   // In place: the oldest message, read where it lies until release() pops it; null when empty.
   const T* front() {
     const std::uint64_t head = head_.load(std::memory_order_relaxed);
-    if (tailCache_ == head) tailCache_ = tail_.load(std::memory_order_acquire);
-    if (tailCache_ == head) {
+    if (waiting(head, 1) == 0) {
       if constexpr (kCounting) bump(consumer_.emptyPops);
       return nullptr;
     }
     return &slots_[head & mask_];
   }
-  void release() {
-    head_.store(head_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
-    if (producerBell_ != nullptr) producerBell_->ring();
-  }
+  void release() { releaseTo(head_.load(std::memory_order_relaxed) + 1); }
 
   bool tryPop(T& out) { return tryPopN(std::span<T>(&out, 1)) == 1; }
 
@@ -214,6 +210,7 @@ class alignas(kCacheLine) SpscQueue {
     Counter refusedPushes{0}, nanosBlockedFull{0}, highWater{0}, occupancySamples{0}, occupancySum{0};
     std::array<Counter, kOccupancyBuckets> histogram{};
     std::uint64_t untilSample = 0;  // messages to push before the next occupancy sample
+    bool claimRefreshed = false;    // claim() read the consumer's index (recorded at publish())
   };
   struct ConsumerCounters {
     Counter emptyPops{0}, nanosBlockedEmpty{0};
@@ -222,15 +219,11 @@ class alignas(kCacheLine) SpscQueue {
 
   std::size_t pushSome(std::span<const T> messages) {
     const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
-    // One read of the consumer's index at most: where the cached copy says the queue is too full, or for an
-    // occupancy sample.
-    const bool refreshed = capacity_ - (tail - headCache_) < messages.size() || sampleDue(messages.size());
-    if (refreshed) headCache_ = head_.load(std::memory_order_acquire);
-    const std::size_t n = std::min<std::size_t>(messages.size(), capacity_ - (tail - headCache_));
+    bool refreshed = false;
+    const std::size_t n = std::min<std::size_t>(messages.size(), room(tail, messages.size(), refreshed));
     if (n > 0) {
       for (std::size_t i = 0; i < n; ++i) slots_[(tail + i) & mask_] = messages[i];
-      tail_.store(tail + n, std::memory_order_release);
-      if (consumerBell_ != nullptr) consumerBell_->ring();
+      publishTo(tail + n);
     }
     if constexpr (kCounting) recordPush(tail + n, n, refreshed);
     return n;
@@ -238,13 +231,35 @@ class alignas(kCacheLine) SpscQueue {
 
   std::size_t popSome(std::span<T> out) {
     const std::uint64_t head = head_.load(std::memory_order_relaxed);
-    if (tailCache_ - head < out.size()) tailCache_ = tail_.load(std::memory_order_acquire);
-    const std::size_t n = std::min<std::size_t>(out.size(), tailCache_ - head);
+    const std::size_t n = std::min<std::size_t>(out.size(), waiting(head, out.size()));
     if (n == 0) return 0;
     for (std::size_t i = 0; i < n; ++i) out[i] = slots_[(head + i) & mask_];
-    head_.store(head + n, std::memory_order_release);
-    if (producerBell_ != nullptr) producerBell_->ring();
+    releaseTo(head + n);
     return n;
+  }
+
+  // Producer: the free slots from `tail`, reading the consumer's index once at most: where the cached copy
+  // shows fewer than `wanted`, or for an occupancy sample (`refreshed` says whether it read it).
+  std::size_t room(std::uint64_t tail, std::size_t wanted, bool& refreshed) {
+    refreshed = capacity_ - (tail - headCache_) < wanted || sampleDue(wanted);
+    if (refreshed) headCache_ = head_.load(std::memory_order_acquire);
+    return capacity_ - (tail - headCache_);
+  }
+  // Producer: every slot before `tail` is written; the consumer may take them.
+  void publishTo(std::uint64_t tail) {
+    tail_.store(tail, std::memory_order_release);
+    if (consumerBell_ != nullptr) consumerBell_->ring();
+  }
+  // Consumer: the messages from `head`, reading the producer's index where the cached copy shows fewer than
+  // `wanted`.
+  std::size_t waiting(std::uint64_t head, std::size_t wanted) {
+    if (tailCache_ - head < wanted) tailCache_ = tail_.load(std::memory_order_acquire);
+    return tailCache_ - head;
+  }
+  // Consumer: every slot before `head` is read; the producer may reuse them.
+  void releaseTo(std::uint64_t head) {
+    head_.store(head, std::memory_order_release);
+    if (producerBell_ != nullptr) producerBell_->ring();
   }
 
   bool sampleDue(std::size_t messages) const {
@@ -313,7 +328,6 @@ class alignas(kCacheLine) SpscQueue {
   // Producer's line.
   alignas(kCacheLine) std::atomic<std::uint64_t> tail_{0};
   std::uint64_t headCache_ = 0;
-  bool claimRefreshed_ = false;  // claim() read the consumer's index (for the accounting at publish())
   [[no_unique_address]] std::conditional_t<kCounting, ProducerCounters, NoCounters> producer_;
 };
 
