@@ -11,6 +11,7 @@
 #include "host/machine_wire.h"
 #include "host/mpi_machine.h"
 #include "host/node_thread.h"
+#include "host/processor_thread.h"
 #include "queues/jitter_transport.h"
 #include "queues/mpi_interconnect.h"
 
@@ -76,9 +77,9 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
   std::atomic<std::size_t> running(local);
   std::latch subdivided{std::ptrdiff_t(local)};
   std::latch synthesis(1);
-  std::vector<std::thread> threads;
+  ProcessorThreads threads;
   for (std::size_t k = 0; k < local; ++k)
-    threads.emplace_back([&, k] {
+    threads.start([&, k] {
       const int id = ids[k];
       guarded(failure, id, [&] {
         nodes[k] = std::make_unique<node::LogicalProcessor<Real>>(job.context, std::move(job.setups[k]),
@@ -112,7 +113,7 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
   } catch (const std::exception& e) {
     link.abort(e.what());  // threads may be waiting for rays that will never come: end the job here
   }
-  for (std::thread& t : threads) t.join();
+  threads.joinAll();
 
   RankResults results;
   for (std::size_t k = 0; k < local; ++k) {

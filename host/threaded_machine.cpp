@@ -5,6 +5,7 @@
 
 #include "host/node_thread.h"
 #include "host/parallel_for.h"
+#include "host/processor_thread.h"
 #include "node/scheduling.h"
 #include "queues/jitter_transport.h"
 #include "queues/shared_memory_interconnect.h"
@@ -36,9 +37,9 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
   });
   std::vector<ProcessorReport> reports(setups.size());
   std::latch synthesis(1);
-  std::vector<std::thread> threads;
+  ProcessorThreads threads;
   for (int id = 0; id < processors; ++id)
-    threads.emplace_back([&, id] {
+    threads.start([&, id] {
       synthesis.wait();
       driveNodeThread(*nodes[id], interconnect, id, reports[id]);
     });
@@ -57,7 +58,7 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
     std::this_thread::sleep_for(node::scheduling::kHostBatchingPause);
     queues::waitUntil(channel.doorbell(), [&] { return interconnect.terminated() || channel.anyPending(); });
   }
-  for (std::thread& t : threads) t.join();
+  threads.joinAll();
   channel.drain(accumulate);
   for (int id = 0; id < processors; ++id) {
     reports[id].node = nodes[id]->stats();
