@@ -1,9 +1,12 @@
 #include "queues/doorbell.h"
 
 #if defined(__linux__)
+#include <linux/futex.h>
 #include <linux/membarrier.h>
 #include <sys/syscall.h>
 #include <unistd.h>
+
+#include <climits>
 #endif
 
 namespace raycube::queues {
@@ -16,6 +19,26 @@ bool asymmetricFencesAvailable() {
   return false;
 #endif
 }
+
+#if defined(__linux__) && defined(SYS_futex)
+// std::atomic<std::uint32_t> holds its value as a plain 32-bit word, which is what a futex waits on.
+static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));
+
+void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noexcept {
+  // Returns at once if word no longer holds seen; EINTR and spurious returns are the callers' re-check.
+  syscall(SYS_futex, reinterpret_cast<const std::uint32_t*>(&word), FUTEX_WAIT_PRIVATE, seen, nullptr, nullptr, 0);
+}
+
+void wakeAll(std::atomic<std::uint32_t>& word) noexcept {
+  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, INT_MAX, nullptr, nullptr, 0);
+}
+#else
+void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noexcept {
+  word.wait(seen, std::memory_order_acquire);
+}
+
+void wakeAll(std::atomic<std::uint32_t>& word) noexcept { word.notify_all(); }
+#endif
 
 namespace {
 // Registering costs an RCU grace period (about 10 ms measured) once the process has a second thread, and

@@ -200,5 +200,29 @@ TEST(Doorbell, UsesMembarrierWhereTheKernelHasIt) {
   EXPECT_EQ(Doorbell(FenceMode::kSymmetric).fenceMode(), FenceMode::kSymmetric);
 }
 
+// The futex underneath: a sleeper whose word already moved on does not sleep (a ring between its check and
+// its sleep is not lost), and one wake reaches every sleeper.
+TEST(Doorbell, SleepWhileReturnsAtOnceOnAWordThatMovedOn) {
+  std::atomic<std::uint32_t> word{7};
+  runWatched(kTimeLimit, "slept on a word that had moved on", [&] { sleepWhile(word, 6); });  // 7 is not 6: returns without a wake
+}
+
+TEST(Doorbell, WakeAllReachesEverySleeper) {
+  std::atomic<std::uint32_t> word{0};
+  std::atomic<int> awake{0};
+  runWatched(kTimeLimit, "a sleeper missed the wake", [&] {
+    std::vector<std::jthread> sleepers;
+    for (int k = 0; k < 4; ++k)
+      sleepers.emplace_back([&] {
+        while (word.load(std::memory_order_acquire) == 0) sleepWhile(word, 0);
+        awake.fetch_add(1);
+      });
+    std::this_thread::sleep_for(20ms);  // most of them asleep by now; the others see the word
+    word.store(1, std::memory_order_release);
+    wakeAll(word);
+  });
+  EXPECT_EQ(awake.load(), 4);
+}
+
 }  // namespace
 }  // namespace raycube::queues
