@@ -301,7 +301,7 @@ Hit BasicBvh<Real>::closestHit(const BasicRay<Real>& ray, TraceCounters& counter
     const Hit h{nearestHit(scene_.objects[object], ray, std::numeric_limits<Real>::infinity()), object};
     if (h.t < kInfinity && h.closerThan(best)) {
       best = h;
-      bestT = Real(h.t);
+      bestT = roundedTowards<Real>(h.t, kInfinity);
     }
     return true;
   });

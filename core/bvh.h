@@ -2,11 +2,14 @@
 // Bounding volume hierarchy for the image-parallel baseline (the "Roth" machine: whole database in every
 // worker). Its answers equal BruteForce's bit for bit: same intersection functions, same tie rule. Its boxes
 // and slab tests are in the precision Real of the rays it answers.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "core/box.h"
+#include "core/precision.h"
 #include "core/intersect.h"
 #include "core/trace_stats.h"
 #include "core/transmission.h"
@@ -118,12 +121,48 @@ BasicBvh<Real> bvhOver(const Scene& scene, const Whitted& shading, const std::ve
   return BasicBvh<Real>(scene, shading, objects, *whole, wholeIdOf, largestLeaf);
 }
 
+// Where a float traversal may stop: a hit's t and a box's entry are each rounded within float's bits of the
+// ray's reach (|origin| + t |direction|), so an object tied with the best hit so far may have its box
+// entered, as computed, a few ulps beyond that hit (a unit sphere in one of radius 6e7: its hit and a
+// polygon's round to one t, and the BVH passed over the sphere the reference takes). kFloatHitErrorRelative
+// of the reach (2^2 ulps) beyond: such boxes are still visited, and the tie rule decides. Double's padding
+// covers its rounding; its bounds are exact.
+template <class Real>
+struct TraversalSlack {
+  explicit TraversalSlack(const BasicRay<Real>& ray) {
+    if constexpr (kIsFloat<Real>) {
+      Real originReach = 0, directionReach = 0;
+      for (int a = 0; a < 3; ++a) {
+        originReach = std::max(originReach, std::abs(ray.origin[a]));
+        directionReach = std::max(directionReach, std::abs(ray.direction[a]));
+      }
+      const Real k = Real(kFloatHitErrorRelative);
+      grow = 1 + k * directionReach;
+      shrink = 1 - k * directionReach;
+      offset = k * originReach;
+    }
+  }
+  // Read at every node (tLimit falls as hits are found): one multiply-add, none in double. A traversal's
+  // limit is never negative (it is at least the ray's tMin).
+  Real beyond(Real t) const {
+    if constexpr (kIsFloat<Real>) return t * grow + offset;
+    return t;
+  }
+  Real before(Real t) const {
+    if constexpr (kIsFloat<Real>) return t * (t >= 0 ? shrink : grow) - offset;
+    return t;
+  }
+  Real grow = 1, shrink = 1, offset = 0;
+};
+
 template <class Real>
 template <class Visit>
 void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real& tLimit, TraceCounters& counters,
                               Visit&& visit) const {
   if (nodes_.empty()) return;
   const InverseDirection<Real> inv(ray.direction);
+  const TraversalSlack<Real> slack(ray);
+  const Real from = slack.before(tFrom);
   struct Entry {
     std::uint32_t node;
     Real tEnter;
@@ -132,11 +171,12 @@ void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real&
   int top = 0;
   Real tEnter;
   ++counters.boxTests;
-  if (!slabsHit(nodes_[0].box, ray.origin, inv, tFrom, tLimit, tEnter)) return;
+  if (!slabsHit(nodes_[0].box, ray.origin, inv, from, slack.beyond(tLimit), tEnter)) return;
   stack[top++] = Entry{0, tEnter};
   while (top > 0) {
     const Entry entry = stack[--top];
-    if (entry.tEnter > tLimit) continue;
+    const Real limit = slack.beyond(tLimit);
+    if (entry.tEnter > limit) continue;
     const Node& node = nodes_[entry.node];
     if (node.count > 0) {
       for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
@@ -148,7 +188,7 @@ void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real&
     bool hit[2];
     for (int c = 0; c < 2; ++c) {
       ++counters.boxTests;
-      hit[c] = slabsHit(nodes_[children[c]].box, ray.origin, inv, tFrom, tLimit, tChild[c]);
+      hit[c] = slabsHit(nodes_[children[c]].box, ray.origin, inv, from, limit, tChild[c]);
     }
     // Push the farther child first so the nearer one is visited next.
     const int nearFirst = (hit[0] && hit[1] && tChild[1] < tChild[0]) ? 1 : 0;

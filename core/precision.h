@@ -1,6 +1,7 @@
 #pragma once
 // The arithmetic of ray state and intersection tests, chosen at run time (--precision). The tracer is
 // written once over a type Real; the renderers instantiate it for float and double and dispatch here.
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -27,6 +28,16 @@ inline constexpr Precision kPrecisionOf = sizeof(Real) == sizeof(float) ? Precis
                                                                         : Precision::Double;
 template <class Real>
 inline constexpr bool kIsFloat = kPrecisionOf<Real> == Precision::Float;
+
+// t in Real, rounded towards direction (+infinity: up, -infinity: down) where Real cannot hold it. A bound
+// on t for a traversal in Real must not fall short of the double it stands for: a hit's t rounded to the
+// nearest float may lie below a tied hit of another object, whose box then starts beyond the bound and is
+// passed over, so the BVH's tie went to the later object where the reference's went to the earlier.
+template <class Real>
+Real roundedTowards(double t, double direction) {
+  const Real r = Real(t);
+  return (direction < 0 ? double(r) > t : double(r) < t) ? std::nextafter(r, Real(direction)) : r;
+}
 
 // Spawned rays start off the surface by this many units of the hit point's magnitude (max-norm, or the
 // distance travelled when larger), in the spirit of Wachter & Binder (Ray Tracing Gems ch. 6): far above the

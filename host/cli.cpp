@@ -482,9 +482,8 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render
       ->add_option("--cells", cmd.cells,
                    "How a region holds its objects: paper (3.3's super-cells cut by depth faces) | bvh (a BVH, "
-                   "cost about logarithmic in the objects) | auto (bvh for regions of more than " +
-                       std::to_string(node::kDenseRegionObjects) +
-                       " objects; always paper when emulating, the costs being fitted to it)")
+                   "cost about logarithmic in the objects) | auto (bvh on real cores, where it costs less even in sparse "
+                   "regions; paper when emulating, the costs being fitted to it)")
       ->transform(CLI::IsMember(keysOf(kCellStructures), CLI::ignore_case));
   render
       ->add_option("--cell-level", cmd.machine.cellLevel,

@@ -39,7 +39,7 @@ struct MachineSettings {
   int subsampleWindow = 8;         // 3.7.1: one sub-sampled pixel per w x w window
   LoadMetric loadMetric = LoadMetric::Cost;
   std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
-  // How each region holds its objects. Auto: a BVH for dense regions (node::chosenFor), but the paper's
+  // How each region holds its objects. Auto: a BVH in every region (node::chosenFor), but the paper's
   // cells whenever the machine is emulated, whose costs were fitted to them (table 2).
   node::CellStructure cells = node::CellStructure::Auto;
   int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)

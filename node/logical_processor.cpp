@@ -37,7 +37,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       shading_(scene_, context.shading, setup_.database->features()),
       transport_(transport),
       area_(context.regions.areaOf(setup_.id)),
-      structure_(chosenFor(setup_.cells, setup_.objects.size())),
+      structure_(chosenFor(setup_.cells)),
       cells_(area_, context.lines(), structure_ == CellStructure::Bvh ? 0 : setup_.cellLevel,
              structure_ == CellStructure::Paper, setup_.objects, setup_.objectBoxes),
       neighbours_(context.regions.neighbours(setup_.id)),
@@ -166,15 +166,10 @@ void forEachCandidate(const std::vector<std::uint32_t>& objects, const core::Bas
 
 // The candidates of a region in a BVH: the objects whose boxes the ray meets in [ta, tb] (rounded outwards
 // in Real), nearest first, no farther than tLimit.
-template <class Real>
-Real roundedTowards(double t, double direction) {
-  const Real r = Real(t);
-  return (direction < 0 ? double(r) > t : double(r) < t) ? std::nextafter(r, Real(direction)) : r;
-}
 template <class Real, class Visit>
 void forEachCandidate(const core::BasicBvh<Real>& bvh, const core::BasicRay<Real>& ray, double ta, double,
                       const Real& tLimit, core::TraceCounters& counters, Visit&& visit) {
-  bvh.traverse(ray, std::max(ray.tMin, roundedTowards<Real>(ta, -core::kInfinity)), tLimit, counters, visit);
+  bvh.traverse(ray, std::max(ray.tMin, core::roundedTowards<Real>(ta, -core::kInfinity)), tLimit, counters, visit);
 }
 
 }  // namespace
@@ -204,7 +199,7 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
     return mailboxT_[object];
   };
   // How far along the ray a candidate's box may start: the interval's end, then the best hit so far.
-  Real bound = roundedTowards<Real>(std::min(tb, tLimit), core::kInfinity);
+  Real bound = core::roundedTowards<Real>(std::min(tb, tLimit), core::kInfinity);
   if (ray.kind == core::RayKind::Light) {
     crossed_.clear();
     bool opaque = false;
@@ -227,7 +222,7 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
     if (h.t >= ta && h.t < tb) {
       if (h.closerThan(hit)) {
         hit = h;
-        bound = Real(h.t);
+        bound = core::roundedTowards<Real>(h.t, core::kInfinity);
       }
     } else if (carriesAhead_ && h.t >= tb &&
                (h.t < core::kInfinity ? h.closerThan(ahead_) : !ahead_.found())) {

@@ -33,7 +33,7 @@ namespace raycube::node {
 // (an engine sending a setup to another address space sends the database's value).
 struct NodeSetup {
   int id = 0;
-  CellStructure cells = CellStructure::Auto;  // the paper's cells or a BVH (Auto: by the region's objects)
+  CellStructure cells = CellStructure::Auto;  // the paper's cells or a BVH (Auto: a BVH, chosenFor)
   int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
   std::shared_ptr<const RegionDatabase> database;  // the only objects this processor holds
   std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)

@@ -24,19 +24,17 @@ enum class WalkResult : std::uint8_t { Stopped, Finished, Exited };
 
 // How a region organises its objects. Paper: the cells of 3.3. Bvh: one cell spanning the whole region (its
 // pyramid still bounds the ray's interval), whose objects a BVH visits: the paper's cells suit a few
-// objects, their depth cuts explode on thousands, a BVH's cost grows about logarithmically. Auto: the
-// paper's cells for sparse regions, a BVH for dense ones (the host decides per region, see host/machine.h).
+// objects, their depth cuts explode on thousands, a BVH's cost grows about logarithmically. Auto: a BVH in
+// every region on real cores; the host gives the emulated machine the paper's cells (host/machine.h).
 enum class CellStructure : std::uint8_t { Auto, Paper, Bvh };
 
-// Auto's threshold: a region holding more objects than this is dense. Paired CPU against 64, 8 rounds (the
-// two runs' environments of one size): mount 6 at 8 x 8 0.91 (its regions around the glass spheres'
-// centres hold 24 to 68 objects in up to 531 cells, and every ray inside a sphere crosses them), jacks 4 at
-// 8 x 8 0.97, balls 2 at 8 x 8 0.96 and at 4 x 4 1.05; the other default-size scenes have no region of 9 to
-// 64 objects. A BVH in every region: balls 2 faster at 8 x 8, mount 6 slower, both within the noise of 8.
-inline constexpr std::size_t kDenseRegionObjects = 8;
-inline CellStructure chosenFor(CellStructure requested, std::size_t regionObjects) {
-  if (requested != CellStructure::Auto) return requested;
-  return regionObjects > kDenseRegionObjects ? CellStructure::Bvh : CellStructure::Paper;
+// Auto on real cores. Until a region of one cell walked in one pass (RegionCells::walkOneCell), the paper's
+// cells served regions of at most 8 objects; since, a BVH region costs fewer instructions there too, down
+// to the empty regions the paper's cells crossed column by column (callgrind, 8 x 8, against that
+// threshold: mount 6 -1.3%, balls 4 -1.5%, jacks 4 -1.1%, balls 2 -5.1%, balls 1 -9.2%; 4 x 4: balls 2
+// -1.6%, balls 1 -4.4%; wall, 10 interleaved rounds at 8 x 8: mount 6 -2.1%, balls 2 -3.2%).
+inline CellStructure chosenFor(CellStructure requested) {
+  return requested == CellStructure::Auto ? CellStructure::Bvh : requested;
 }
 
 class RegionCells {

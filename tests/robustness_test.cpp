@@ -126,8 +126,13 @@ TEST(Robustness, FloatMachineAgreesInsideAHugeSphere) {
   const core::Image reference = renderReference(scene, settings).image;
   MachineSettings messages = smallMachine();
   messages.lightRays = node::LightRayMode::Messages;
-  for (const MachineSettings& machine : {MachineSettings{}, messages})
+  MachineSettings paper;
+  paper.cells = node::CellStructure::Paper;
+  // A reflected ray meets the small sphere and the floor at one float t: the regions' BVHs (the default)
+  // must visit the sphere's box, entered as computed a few ulps beyond that t, as the paper's cells do.
+  for (const MachineSettings& machine : {MachineSettings{}, messages, paper})
     EXPECT_TRUE(core::bitIdentical(renderMachine(scene, settings, machine).image, reference));
+  EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, settings).image, reference));
   // Past float's bits, the scene is refused with advice rather than rendered differently by each mode.
   core::Scene wider = scene;
   std::get<core::Sphere>(wider.objects[0].shape).radius = 1e9;
