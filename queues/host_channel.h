@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -44,10 +45,15 @@ class HostChannel {
     // Ships a partial block; call when the node goes idle. Waits (sleeping on the node's bell) if full.
     void flush() {
       if (unsent() == 0) return;
-      if (inSpare_)
-        queue_->push(spare_);
-      else
-        queue_->publish();
+      if (inSpare_) {
+        // Only the contributions: a node going idle ships the few it has, and 8 x 8's processors, with two
+        // blocks each, often find the queue full (copying whole 8 KB blocks cost mount 6 at 8 x 8 and 256 x
+        // 256 16 M instructions, 1.0%).
+        Block& slot = queue_->claimWaiting();
+        slot.count = spare_.count;
+        std::copy_n(spare_.items.begin(), spare_.count, slot.items.begin());
+      }
+      queue_->publish();
       claimed_ = nullptr;
       inSpare_ = false;
     }

@@ -113,6 +113,19 @@ class alignas(kCacheLine) SpscQueue {
     if constexpr (kCounting) bump(producer_.refusedPushes);
     return nullptr;
   }
+  // The same, waiting (as pushN: spin, yield, then sleep on the producer bell) while the queue is full.
+  T& claimWaiting() {
+    if (T* slot = claim()) return *slot;
+    const Clock::time_point start = startClock();
+    T* slot = nullptr;
+    while (slot == nullptr) {
+      waitUntil(
+          producerBell_, [this] { return hasSpace(); }, wait_);
+      slot = claim();
+    }
+    if constexpr (kCounting) bump(producer_.nanosBlockedFull, elapsedNanos(start));
+    return *slot;
+  }
   void publish() {
     const std::uint64_t tail = tail_.load(std::memory_order_relaxed) + 1;
     publishTo(tail);

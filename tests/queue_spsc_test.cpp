@@ -83,8 +83,12 @@ TEST_P(SpscFuzz, DeliversEveryMessageOnceInOrder) {
         queue.pushN(batch);
         sequence += n;
       } else if (mode == Mode::kInPlace) {
+        // Every other message claims by waiting in the queue (claimWaiting), the others by retrying.
         Message* slot = nullptr;
-        while ((slot = queue.claim()) == nullptr) std::this_thread::yield();
+        if (sequence % 2 == 1)
+          slot = &queue.claimWaiting();
+        else
+          while ((slot = queue.claim()) == nullptr) std::this_thread::yield();
         *slot = makeMessage(sequence++);
         producerSum += slot->check;
         queue.publish();
@@ -332,6 +336,23 @@ TEST(SpscQueue, AccountingTimesBlockingOnFullAndEmpty) {
   queue.push(3);
   emptyConsumer.join();
   EXPECT_GE(queue.stats().nanosBlockedEmpty - full.nanosBlockedEmpty, 20'000'000u);
+}
+
+TEST(SpscQueue, ClaimWaitingBlocksOnAFullQueueAsPushDoes) {
+  SpscQueue<int, Accounting::kOn> queue(1);
+  queue.push(1);
+  std::thread consumer([&] {
+    while (queue.stats().refusedPushes == 0) std::this_thread::yield();  // the producer is waiting
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_EQ(queue.pop(), 1);
+    EXPECT_EQ(queue.pop(), 2);
+  });
+  int& slot = queue.claimWaiting();  // returns once the consumer has freed the only slot
+  slot = 2;
+  queue.publish();
+  consumer.join();
+  EXPECT_EQ(queue.stats().refusedPushes, 1u);
+  EXPECT_GE(queue.stats().nanosBlockedFull, 20'000'000u);
 }
 
 TEST(SpscQueue, WithoutAccountingStatsStayZeroAndCostNoSpace) {
