@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/box.h"
-#include "core/precision.h"
 #include "core/intersect.h"
+#include "core/precision.h"
 #include "core/trace_stats.h"
 #include "core/transmission.h"
 #include "core/whitted.h"

@@ -480,10 +480,12 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
   render
-      ->add_option("--cells", cmd.cells,
-                   "How a region holds its objects: paper (3.3's super-cells cut by depth faces) | bvh (a BVH, "
-                   "cost about logarithmic in the objects) | auto (bvh on real cores, where it costs less even in sparse "
-                   "regions; paper when emulating, the costs being fitted to it)")
+      ->add_option(
+          "--cells", cmd.cells,
+          "How a region holds its objects: paper (3.3's super-cells cut by depth faces) | bvh (a BVH, "
+          "cost about logarithmic in the objects) | auto (bvh on real cores, where it costs less even in "
+          "sparse "
+          "regions; paper when emulating, the costs being fitted to it)")
       ->transform(CLI::IsMember(keysOf(kCellStructures), CLI::ignore_case));
   render
       ->add_option("--cell-level", cmd.machine.cellLevel,

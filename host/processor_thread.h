@@ -18,7 +18,8 @@
 namespace raycube::host {
 
 // A node's deepest call chain (a step: receive, evaluate, walk, traverse, shade, deliver, send) holds a
-// few kilobytes; nothing in it recurses. Every machine test (threads and MPI ranks, ray trees 64 deep) passes with 32 KB.
+// few kilobytes; nothing in it recurses. Every machine test (threads and MPI ranks, ray trees 64 deep) passes
+// with 32 KB.
 inline constexpr std::size_t kProcessorStackBytes = 512 * 1024;
 
 // The processors' threads of one run: each started with its body, all joined together.

@@ -169,7 +169,8 @@ void forEachCandidate(const std::vector<std::uint32_t>& objects, const core::Bas
 template <class Real, class Visit>
 void forEachCandidate(const core::BasicBvh<Real>& bvh, const core::BasicRay<Real>& ray, double ta, double,
                       const Real& tLimit, core::TraceCounters& counters, Visit&& visit) {
-  bvh.traverse(ray, std::max(ray.tMin, core::roundedTowards<Real>(ta, -core::kInfinity)), tLimit, counters, visit);
+  bvh.traverse(ray, std::max(ray.tMin, core::roundedTowards<Real>(ta, -core::kInfinity)), tLimit, counters,
+               visit);
 }
 
 }  // namespace

@@ -26,18 +26,22 @@ static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));
 
 void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noexcept {
   // Returns at once if word no longer holds seen; EINTR and spurious returns are the callers' re-check.
-  syscall(SYS_futex, reinterpret_cast<const std::uint32_t*>(&word), FUTEX_WAIT_PRIVATE, seen, nullptr, nullptr, 0);
+  syscall(SYS_futex, reinterpret_cast<const std::uint32_t*>(&word), FUTEX_WAIT_PRIVATE, seen, nullptr,
+          nullptr, 0);
 }
 
 void wakeAll(std::atomic<std::uint32_t>& word) noexcept {
-  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, INT_MAX, nullptr, nullptr, 0);
+  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, INT_MAX, nullptr, nullptr,
+          0);
 }
 #else
 void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noexcept {
   word.wait(seen, std::memory_order_acquire);
 }
 
-void wakeAll(std::atomic<std::uint32_t>& word) noexcept { word.notify_all(); }
+void wakeAll(std::atomic<std::uint32_t>& word) noexcept {
+  word.notify_all();
+}
 #endif
 
 namespace {

@@ -204,7 +204,8 @@ TEST(Doorbell, UsesMembarrierWhereTheKernelHasIt) {
 // its sleep is not lost), and one wake reaches every sleeper.
 TEST(Doorbell, SleepWhileReturnsAtOnceOnAWordThatMovedOn) {
   std::atomic<std::uint32_t> word{7};
-  runWatched(kTimeLimit, "slept on a word that had moved on", [&] { sleepWhile(word, 6); });  // 7 is not 6: returns without a wake
+  runWatched(kTimeLimit, "slept on a word that had moved on",
+             [&] { sleepWhile(word, 6); });  // 7 is not 6: returns without a wake
 }
 
 TEST(Doorbell, WakeAllReachesEverySleeper) {

@@ -54,7 +54,8 @@ TEST_P(SpdDefaultSizes, MachineIsBitIdenticalOnEveryPartition) {
     // Auto gives every region a BVH on threads; paper never does.
     std::size_t withBvh = 0;
     for (const ProcessorReport& processor : report.processors) withBvh += processor.node.bvh ? 1 : 0;
-    EXPECT_EQ(withBvh, GetParam().cells == node::CellStructure::Auto ? report.processors.size() : 0u) << label;
+    EXPECT_EQ(withBvh, GetParam().cells == node::CellStructure::Auto ? report.processors.size() : 0u)
+        << label;
   }
 }
 
