@@ -484,8 +484,7 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
           "--cells", cmd.cells,
           "How a region holds its objects: paper (3.3's super-cells cut by depth faces) | bvh (a BVH, "
           "cost about logarithmic in the objects) | auto (bvh on real cores, where it costs less even in "
-          "sparse "
-          "regions; paper when emulating, the costs being fitted to it)")
+          "sparse regions; paper when emulating, the costs being fitted to it)")
       ->transform(CLI::IsMember(keysOf(kCellStructures), CLI::ignore_case));
   render
       ->add_option("--cell-level", cmd.machine.cellLevel,
