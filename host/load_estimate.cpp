@@ -188,22 +188,27 @@ class AreaBuckets {
     }
     bucketWidth_ = std::max(1, (width_ + kBuckets - 1) / kBuckets);
     bucketHeight_ = std::max(1, (height_ + kBuckets - 1) / kBuckets);
+    // Each area in the buckets its samples fall in (x0 to x1 - 1): a 64-sample area on 32-sample buckets is
+    // in 2 x 2 of them, where its closed rectangle (to x1) would put it in 3 x 3. A segment on an area's far
+    // boundary still finds it: a segment's buckets reach a margin beyond its ends (forAreasNear).
     for (std::uint32_t i = 0; i < areas.size(); ++i) {
       const node::SampleRect& a = areas[i];
-      // Closed areas: a piece on an area's far boundary is clipped, then given to the next area.
-      for (int by = row(a.y0); by <= row(a.y1); ++by)
-        for (int bx = column(a.x0); bx <= column(a.x1); ++bx) buckets_[std::size_t(by * kBuckets + bx)].push_back(i);
+      for (int by = row(a.y0); by <= row(a.y1 - 1); ++by)
+        for (int bx = column(a.x0); bx <= column(a.x1 - 1); ++bx)
+          buckets_[std::size_t(by * kBuckets + bx)].push_back(i);
     }
+    margin_ = 1e-9 * (1 + width_ + height_);
   }
   int width() const { return width_; }
   int height() const { return height_; }
 
-  // Calls visit(area) once for every area whose bucket the segment's bounding box meets.
+  // Calls visit(area) once for every area in a bucket the segment's bounding box meets, widened by far more
+  // than the clip's rounding: every area whose closed rectangle the clip may find the segment touching.
   template <class Visit>
   void forAreasNear(const ScreenSegment& s, std::vector<std::uint64_t>& seenBy, std::uint64_t stamp,
                     Visit&& visit) const {
-    const int bx0 = column(std::min(s.x0, s.x1)), bx1 = column(std::max(s.x0, s.x1));
-    const int by0 = row(std::min(s.y0, s.y1)), by1 = row(std::max(s.y0, s.y1));
+    const int bx0 = column(std::min(s.x0, s.x1) - margin_), bx1 = column(std::max(s.x0, s.x1) + margin_);
+    const int by0 = row(std::min(s.y0, s.y1) - margin_), by1 = row(std::max(s.y0, s.y1) + margin_);
     for (int by = by0; by <= by1; ++by)
       for (int bx = bx0; bx <= bx1; ++bx)
         for (std::uint32_t area : buckets_[std::size_t(by * kBuckets + bx)])
@@ -219,6 +224,7 @@ class AreaBuckets {
   int row(double y) const { return std::clamp(int(y / bucketHeight_), 0, kBuckets - 1); }
 
   int width_ = 0, height_ = 0, bucketWidth_ = 1, bucketHeight_ = 1;
+  double margin_ = 0;
   std::array<std::vector<std::uint32_t>, kBuckets * kBuckets> buckets_;
 };
 
