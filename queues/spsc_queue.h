@@ -91,14 +91,11 @@ class alignas(kCacheLine) SpscQueue {
   void pushN(std::span<const T> messages) {
     std::size_t done = pushSome(messages);
     if (done == messages.size()) return;
-    const Clock::time_point start = startClock();
     if constexpr (kCounting) bump(producer_.refusedPushes);
-    while (done < messages.size()) {
-      waitUntil(
-          producerBell_, [this] { return hasSpace(); }, wait_);
+    waitForRoomUntil([&] {
       done += pushSome(messages.subspan(done));
-    }
-    if constexpr (kCounting) bump(producer_.nanosBlockedFull, elapsedNanos(start));
+      return done == messages.size();
+    });
   }
 
   // In place, for large messages (a block of contributions): the free slot the next message goes to, to be
@@ -115,15 +112,8 @@ class alignas(kCacheLine) SpscQueue {
   }
   // The same, waiting (as pushN: spin, yield, then sleep on the producer bell) while the queue is full.
   T& claimWaiting() {
-    if (T* slot = claim()) return *slot;
-    const Clock::time_point start = startClock();
-    T* slot = nullptr;
-    while (slot == nullptr) {
-      waitUntil(
-          producerBell_, [this] { return hasSpace(); }, wait_);
-      slot = claim();
-    }
-    if constexpr (kCounting) bump(producer_.nanosBlockedFull, elapsedNanos(start));
+    T* slot = claim();  // counts the refusal if the queue is full
+    if (slot == nullptr) waitForRoomUntil([&] { return (slot = claim()) != nullptr; });
     return *slot;
   }
   void publish() {
@@ -251,6 +241,17 @@ class alignas(kCacheLine) SpscQueue {
     return n;
   }
 
+  // Producer, refused: waits for room (spin, yield, then sleep on the producer bell) and calls done() each
+  // time there is some, until it returns true; the time counts as blocked on a full queue.
+  template <class Done>
+  void waitForRoomUntil(Done&& done) {
+    const Clock::time_point start = startClock();
+    do {
+      waitUntil(
+          producerBell_, [this] { return hasSpace(); }, wait_);
+    } while (!done());
+    if constexpr (kCounting) bump(producer_.nanosBlockedFull, elapsedNanos(start));
+  }
   // Producer: the free slots from `tail`, reading the consumer's index once at most: where the cached copy
   // shows fewer than `wanted`, or for an occupancy sample (`refreshed` says whether it read it).
   std::size_t room(std::uint64_t tail, std::size_t wanted, bool& refreshed) {
