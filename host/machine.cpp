@@ -164,22 +164,43 @@ std::vector<core::Box> worldBoxesOf(const core::Scene& scene) {
   return out;
 }
 
-// Where the scene lies: a few boxes holding every object's world box (padded as the cells pad them),
-// widened for a float ray's hit error over the scene's longest segment, as the eye boxes are.
-std::vector<core::Box> sceneBoundsOf(const std::vector<core::Box>& worldBoxes, double sceneExtent) {
+// Boxes holding objects' world boxes (padded as the cells pad them), widened for a float ray's hit error
+// over the scene's longest segment, as the eye boxes are.
+std::vector<core::Box> widenedForFloatHits(std::vector<core::Box> bounds, double sceneExtent) {
   const double floatHitError = core::kFloatHitErrorRelative * sceneExtent;
-  std::vector<core::Box> bounds = medianCover(worldBoxes, node::scheduling::kSceneBoundsBoxes);
-  for (core::Box& b : bounds) b = core::Box{b.lo - floatHitError, b.hi + floatHitError};
+  for (core::Box& b : bounds)
+    if (!b.empty()) b = core::Box{b.lo - floatHitError, b.hi + floatHitError};
   return bounds;
 }
+
+// Where the scene lies: a few boxes holding every object's world box.
+std::vector<core::Box> sceneBoundsOf(const std::vector<core::Box>& worldBoxes, double sceneExtent) {
+  return widenedForFloatHits(medianCover(worldBoxes, node::scheduling::kSceneBoundsBoxes), sceneExtent);
+}
+
+// Where each region's objects lie (MachineContext::regionBounds): the box of the world boxes of the objects
+// touching it (its cells' objects; the rear ones lie behind the eye).
+core::Box regionBoundsOf(const std::vector<std::uint32_t>& objects,
+                         const std::vector<core::Box>& worldBoxes) {
+  core::Box bounds;
+  for (std::uint32_t o : objects) bounds.extend(worldBoxes[o]);
+  return bounds;
+}
+
+// The processors' setups, and where each region's objects lie where the world boxes are given.
+struct PrunedDatabase {
+  std::vector<node::NodeSetup> setups;
+  std::vector<core::Box> regionBounds;
+};
 
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
-std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const core::View& view,
-                                           const node::RegionMap& regions, const node::ScreenLines& lines,
-                                           const std::vector<node::EyeBox>& boxes, const BoxTree& inEyeFrame,
-                                           const BoxTree& inWorld, const MachineSettings& machine) {
+PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& view,
+                             const node::RegionMap& regions, const node::ScreenLines& lines,
+                             const std::vector<node::EyeBox>& boxes, const BoxTree& inEyeFrame,
+                             const BoxTree& inWorld, const std::vector<core::Box>& worldBoxesForBounds,
+                             const MachineSettings& machine) {
   const core::Scene& scene = shading.scene();
   std::vector<std::uint32_t> rear;
   for (std::uint32_t o = 0; o < boxes.size(); ++o)
@@ -197,6 +218,7 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const c
           objectsInLightVolume(machine.lightRays, light.position, rearSources, inWorld));
   }
   std::vector<node::NodeSetup> setups(std::size_t(regions.processors()));
+  std::vector<core::Box> regionBounds(worldBoxesForBounds.empty() ? 0 : setups.size());
   std::vector<std::vector<std::uint32_t>> heldBy(setups.size());
   const std::vector<std::uint32_t> everyObject = core::everyObjectOf(scene);
   parallelFor(regions.processors(), [&](int p) {
@@ -211,6 +233,8 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const c
     setup.rearObjects = rear;
     setup.objects =
         inEyeFrame.query([&](const core::Box& b) { return node::mayTouch(node::EyeBox{b.lo, b.hi}, region); });
+    if (!regionBounds.empty())
+      regionBounds[std::size_t(p)] = regionBoundsOf(setup.objects, worldBoxesForBounds);
     setup.lightRays = machine.lightRays;
     // The light volumes' objects only decide what the processor holds: its database's BVH finds them.
     std::vector<std::vector<std::uint32_t>*> held{&setup.objects, &setup.rearObjects};
@@ -229,7 +253,7 @@ std::vector<node::NodeSetup> pruneDatabase(const core::Whitted& shading, const c
     setups[std::size_t(p)] = std::move(setup);
   });
   giveDatabases(setups, heldBy, scene, boxes, readsSceneInPlace(machine));
-  return setups;
+  return {std::move(setups), std::move(regionBounds)};
 }
 
 // The iPSC was a hypercube: number the regions so that neighbours are few hops apart (3.7.1: "it is
@@ -380,12 +404,17 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
                                   lightVolumes, sceneBounds);
   seconds.sampling = laps.next();
   ScreenPartition partition = partitionScreen(view, load, machine, coresSharedBy(machine));
-  node::MachineContext context{view, settings.shading, std::move(partition.regions), std::move(sceneBounds)};
+  node::MachineContext context{
+      view, settings.shading, std::move(partition.regions), std::move(sceneBounds), {}};
   seconds.partitioning = laps.next();
   progress.phase("pruning");
   const SpatialQueries spatial = queries.get();
-  std::vector<node::NodeSetup> setups = pruneDatabase(shading, view, context.regions, context.lines(), boxes,
-                                                      spatial.inEyeFrame, spatial.inWorld, machine);
+  const std::vector<core::Box> noBoxes;
+  PrunedDatabase pruned =
+      pruneDatabase(shading, view, context.regions, context.lines(), boxes, spatial.inEyeFrame,
+                    spatial.inWorld, endRaysLeavingScene ? worldBoxes : noBoxes, machine);
+  std::vector<node::NodeSetup>& setups = pruned.setups;
+  context.regionBounds = widenedForFloatHits(std::move(pruned.regionBounds), sceneExtent);
   // The processors' BVHs keep the sampling tree's shape (NodeSetup::sceneShape) and their light rays use the
   // tree, but for the emulated machine, whose costs count the box tests of trees built anew.
   if (!machine.emulate)

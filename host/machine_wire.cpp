@@ -94,6 +94,7 @@ void writeContext(WireWriter& out, const node::MachineContext& context) {
   out.vector(areas);
   out.value(context.regions.gridColumns());
   out.vector(context.sceneBounds);
+  out.vector(context.regionBounds);
 }
 
 node::MachineContext readContext(WireReader& in) {
@@ -102,8 +103,10 @@ node::MachineContext readContext(WireReader& in) {
   auto areas = in.vector<node::SampleRect>();
   const int gridColumns = in.value<int>();
   auto sceneBounds = in.vector<core::Box>();
-  return node::MachineContext{view, shading, node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns),
-                              std::move(sceneBounds)};
+  auto regionBounds = in.vector<core::Box>();
+  return node::MachineContext{view, shading,
+                              node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns),
+                              std::move(sceneBounds), std::move(regionBounds)};
 }
 
 // ---- A processor's setup (3.2 step 2, 3.7.2).

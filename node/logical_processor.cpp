@@ -5,6 +5,7 @@
 
 #include "core/ray_tree.h"
 #include "core/transmission.h"
+#include "node/regions_ahead.h"
 #include "node/scene_bounds.h"
 #include "node/scheduling.h"
 
@@ -264,7 +265,8 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
   auto lastPart = [&](double tEnd) { return tEnd >= tMax || er.partEnd(t) == core::kInfinity; };
   auto leaveFor = [&](int owner, double tExit) {
-    if (beyondScene(ray.ray, tExit, tMax)) {
+    if (beyondScene(ray.ray, tExit, tMax) ||
+        (ahead_.t == core::kInfinity && nothingAhead(er, ray.ray, owner, tExit, tMax))) {
       ++stats_.leftScene;
       return finishRay(ray, hit, transmission);
     }
@@ -310,6 +312,15 @@ template <class Real>
 bool LogicalProcessor<Real>::beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const {
   return !context_.sceneBounds.empty() &&
          !meetsBounds(context_.sceneBounds, core::Vec3(ray.origin), core::Vec3(ray.direction), t, tMax);
+}
+
+// Whether the ray, leaving for region `next` at t, misses the objects of every region it would cross on its
+// way out of the scene (node/regions_ahead.h). Not asked of a closest-hit ray carrying a hit found ahead.
+template <class Real>
+bool LogicalProcessor<Real>::nothingAhead(const EyeFrameRay& er, const core::BasicRay<Real>& ray, int next,
+                                          double t, double tMax) const {
+  return node::nothingAhead(context_.regions, context_.regionBounds, context_.sceneBounds, er,
+                            core::Vec3(ray.origin), core::Vec3(ray.direction), next, t, tMax);
 }
 
 // 3.7.2: a light ray born in this region, from a point of the light-source box, meets only the objects of

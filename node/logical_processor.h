@@ -123,6 +123,8 @@ class LogicalProcessor {
   bool startsInLightSourceBox(const core::Vec3& eyeFrameOrigin) const;
   double traceWhereItStarts(const TracedRay& ray);
   bool beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const;
+  bool nothingAhead(const EyeFrameRay& er, const core::BasicRay<Real>& ray, int next, double t,
+                    double tMax) const;
   template <class Objects>
   bool visitInterval(const TracedRay& ray, double ta, double tb, const Objects& objects, core::Hit& hit,
                      double& transmission);

@@ -21,6 +21,11 @@ struct MachineContext {
   // machine). A ray leaving its region that cannot meet these boxes again ends there, not after crossing
   // empty regions.
   std::vector<core::Box> sceneBounds;
+  // Where each region's objects lie: per processor, a world box holding the objects that touch its region,
+  // padded as sceneBounds (empty where it holds none); none where sceneBounds are none. A ray leaving its
+  // region that would cross only regions whose boxes it misses, on its way out of sceneBounds, ends there
+  // too (node/regions_ahead.h).
+  std::vector<core::Box> regionBounds;
   const ScreenLines& lines() const { return regions.lines(); }
 };
 

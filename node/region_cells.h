@@ -95,23 +95,42 @@ class RegionCells {
   std::size_t objectCount_ = 0;
 };
 
+// A ray's way through a cell spanning the screen's [s0, s1) x [q0, q1) (a region of one cell), from t to at
+// most tEnd: the cell's interval [t, end), and whether the ray reaches tEnd in it or leaves it through the
+// faces of `exit` (a crossing rounded behind t leaves at once; no face at all where a NaN hid it).
+struct CellPassage {
+  double end = 0;
+  bool reachesEnd = false;
+  RegionExit exit;
+};
+inline CellPassage passageThrough(const EyeFrameRay& ray, double t, double tEnd, double s0, double s1,
+                                  double q0, double q1) {
+  const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
+  auto faceAhead = [&](int axis, int dir, double lo, double hi) {
+    return dir > 0 ? ray.planeCrossing(axis, hi) : dir < 0 ? ray.planeCrossing(axis, lo) : core::kInfinity;
+  };
+  const double tS = faceAhead(0, sDir, s0, s1), tQ = faceAhead(1, qDir, q0, q1);
+  CellPassage p;
+  p.end = std::max(t, std::min({tS, tQ, tEnd}));
+  p.reachesEnd = tEnd <= tS && tEnd <= tQ;
+  p.exit = RegionExit{p.end, tS <= p.end && sDir != 0 ? sDir : 0, tQ <= p.end && qDir != 0 ? qDir : 0};
+  return p;
+}
+
 // walkColumns' first pass through a region of one cell: the column's faces ahead, the cell's interval, and
-// out through the faces crossed where it ends (a crossing rounded behind t leaves at once).
+// out through the faces crossed where it ends.
 template <class Visit>
 WalkResult RegionCells::walkOneCell(const EyeFrameRay& ray, double t, double tEnd, Visit&& visit,
                                     RegionExit& exit, std::uint64_t& cellSteps) const {
-  const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
-  const double tS = faceAhead(ray, 0, 0, sDir), tQ = faceAhead(ray, 1, 0, qDir);
-  const double tCell = std::max(t, std::min({tS, tQ, tEnd}));
+  const CellPassage p =
+      passageThrough(ray, t, tEnd, bounds_[0][0], bounds_[0][1], bounds_[1][0], bounds_[1][1]);
   ++cellSteps;
   const std::vector<std::uint32_t>& objects = columns_.front().cellObjects.front();
-  if (tCell > t && !objects.empty() && !visit(t, tCell, objects)) return WalkResult::Stopped;
-  if (tEnd <= tS && tEnd <= tQ) return WalkResult::Finished;
-  const int sStep = tS <= tCell && sDir != 0 ? sDir : 0;
-  const int qStep = tQ <= tCell && qDir != 0 ? qDir : 0;
-  if (sStep == 0 && qStep == 0)  // no face crossed (a NaN): on as walkColumns would go on
-    return walkColumns(ray, tCell, tEnd, 0, 0, visit, exit, cellSteps);
-  exit = RegionExit{tCell, sStep, qStep};
+  if (p.end > t && !objects.empty() && !visit(t, p.end, objects)) return WalkResult::Stopped;
+  if (p.reachesEnd) return WalkResult::Finished;
+  if (p.exit.sStep == 0 && p.exit.qStep == 0)  // no face crossed (a NaN): on as walkColumns would go on
+    return walkColumns(ray, p.end, tEnd, 0, 0, visit, exit, cellSteps);
+  exit = p.exit;
   return WalkResult::Exited;
 }
 

@@ -100,7 +100,10 @@ class LogicalProcessorTest : public ::testing::Test {
       for (int k = 0; k <= parts; ++k) c.push_back(samples * k / parts);
       return c;
     };
-    return MachineContext{view, core::ShadingOptions{}, RegionMap::grid(cuts(kSide, columns), cuts(kSide, rows), lines),
+    return MachineContext{view,
+                          core::ShadingOptions{},
+                          RegionMap::grid(cuts(kSide, columns), cuts(kSide, rows), lines),
+                          {},
                           {}};
   }
 

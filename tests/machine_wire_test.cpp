@@ -24,9 +24,12 @@ core::Scene everyShape() {
 
 node::MachineContext contextOf(const core::Scene& scene) {
   const core::View view(scene.camera, 20, 12, core::Sampling::Corners, 2);
-  return node::MachineContext{view, core::ShadingOptions{4, 0.01, 2},
+  return node::MachineContext{view,
+                              core::ShadingOptions{4, 0.01, 2},
                               node::RegionMap::grid({0, 7, 21}, {0, 5, 13}, node::ScreenLines(view)),
-                              {core::Box{{-1, -2, -3}, {1, 0.5, 0}}, core::Box{{2, 2, 2}, {3, 4, 5}}}};
+                              {core::Box{{-1, -2, -3}, {1, 0.5, 0}}, core::Box{{2, 2, 2}, {3, 4, 5}}},
+                              {core::Box{{-1, -2, -3}, {0, 0.5, 0}}, core::Box{},
+                               core::Box{{2, 2, 2}, {3, 4, 4}}, core::Box{{0, 1, 2}, {3, 4, 5}}}};
 }
 
 node::NodeSetup setupOf(const core::Scene& scene, const node::MachineContext& context) {
@@ -101,6 +104,9 @@ TEST(MachineWireTest, JobComesBackAsItLeft) {
   ASSERT_EQ(job.context.sceneBounds.size(), context.sceneBounds.size());
   for (std::size_t b = 0; b < context.sceneBounds.size(); ++b)
     EXPECT_TRUE(sameBytes(job.context.sceneBounds[b], context.sceneBounds[b]));
+  ASSERT_EQ(job.context.regionBounds.size(), context.regionBounds.size());
+  for (std::size_t b = 0; b < context.regionBounds.size(); ++b)
+    EXPECT_TRUE(sameBytes(job.context.regionBounds[b], context.regionBounds[b]));
   for (int p = 0; p < 4; ++p) {
     EXPECT_TRUE(sameBytes(job.context.regions.areaOf(p), context.regions.areaOf(p)));
     EXPECT_EQ(job.context.regions.neighbours(p), context.regions.neighbours(p));

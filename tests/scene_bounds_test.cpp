@@ -1,8 +1,11 @@
 // Where the scene lies (node/scene_bounds.h): the last t at which a ray is inside one of the boxes, from a
-// given t on, or none when it meets none of them there.
+// given t on, or none when it meets none of them there. And what lies ahead of a ray leaving its region
+// (node/regions_ahead.h): whether the regions it would cross hold anything its parts there could meet.
 #include "node/scene_bounds.h"
 
 #include <gtest/gtest.h>
+
+#include "node/regions_ahead.h"
 
 namespace raycube::node {
 namespace {
@@ -46,6 +49,67 @@ TEST(SceneBounds, ARayInsideABoxMeetsItWhileItsIntervalLasts) {
 TEST(SceneBounds, RaysGrazingABoxCountAsInside) {
   EXPECT_TRUE(lastInsideBounds(kTwoBoxes, core::Vec3(0, 1, 0), core::Vec3(1, 0, 0), 0, core::kInfinity));
   EXPECT_TRUE(lastInsideBounds(kTwoBoxes, core::Vec3(1, 0, 0), core::Vec3(0, 0, 1), 0, core::kInfinity));
+}
+
+// Three regions side by side, seen from the origin down -z (the eye frame's depth is -z, its s = x / depth):
+// region 0 left of s(10), region 1 to s(20), region 2 beyond. A ray at depth 5 moving along +x crosses region
+// 1 for x in about [-0.69, 0.69] (t in [1.31, 2.69] from x = -2) and stays in region 2 from there.
+class RegionsAhead : public ::testing::Test {
+ protected:
+  RegionsAhead()
+      : view_(core::Camera{}, 30, 10, core::Sampling::Centers),
+        regions_(RegionMap::grid({0, 10, 20, 30}, {0, 10}, ScreenLines(view_))) {}
+
+  bool nothingAheadOf(const core::Vec3& origin, const core::Vec3& direction, int next, double t,
+                      double tMax = core::kInfinity) const {
+    const EyeFrameRay er = EyeFrameRay::of(core::BasicRay<double>{origin, direction}, view_);
+    return nothingAhead(regions_, regionBounds_, sceneBounds_, er, origin, direction, next, t, tMax);
+  }
+
+  const core::View view_;
+  const RegionMap regions_;
+  // Below the ray in region 1, and in region 2; the scene's bounds hold the ray's way through both.
+  std::vector<core::Box> regionBounds_{core::Box{{-9, -4, -6}, {-8, -2, -4}},
+                                       core::Box{{-1, -4, -6}, {1, -2, -4}},
+                                       core::Box{{3, -4, -6}, {5, -2, -4}}};
+  std::vector<core::Box> sceneBounds_{core::Box{{-10, -4, -10}, {10, 1, 0}}};
+  const core::Vec3 from_{-2, 0, -5}, alongX_{1, 0, 0};
+};
+
+TEST_F(RegionsAhead, ARayMissingEveryRegionsObjectsOnItsWayOutMeetsNothing) {
+  EXPECT_TRUE(nothingAheadOf(from_, alongX_, 1, 1.5));
+  EXPECT_TRUE(nothingAheadOf(from_, alongX_, 2, 3));
+  // Nothing known of the regions: the ray goes on.
+  regionBounds_.clear();
+  EXPECT_FALSE(nothingAheadOf(from_, alongX_, 1, 1.5));
+}
+
+// Only the ray's part in a region counts against that region's box: the box of region 1's objects reaching
+// into region 2's part of the ray is not met; region 2's own box is.
+TEST_F(RegionsAhead, OnlyTheRaysPartInARegionIsTestedAgainstItsObjects) {
+  regionBounds_[1] = core::Box{{3, -1, -6}, {5, 1, -4}};
+  EXPECT_TRUE(nothingAheadOf(from_, alongX_, 1, 1.5));
+  regionBounds_[2] = regionBounds_[1];
+  EXPECT_FALSE(nothingAheadOf(from_, alongX_, 1, 1.5));
+  regionBounds_[2] = core::Box{};  // a region holding no object
+  regionBounds_[1] = core::Box{{0, -1, -6}, {0.5, 1, -4}};
+  EXPECT_FALSE(nothingAheadOf(from_, alongX_, 1, 1.5));
+  EXPECT_TRUE(nothingAheadOf(from_, alongX_, 2, 3));
+}
+
+// A light ray reaching its light, or a ray leaving the scene's bounds, in a region whose objects it misses
+// ends; one whose part in front of the eye ends there goes on (the rear objects lie behind the eye plane).
+TEST_F(RegionsAhead, TheRayEndsWhereItsIntervalOrTheSceneEnds) {
+  regionBounds_[2] = core::Box{{3, -1, -6}, {5, 1, -4}};
+  EXPECT_FALSE(nothingAheadOf(from_, alongX_, 1, 1.5));
+  EXPECT_TRUE(nothingAheadOf(from_, alongX_, 1, 1.5, 2.0));  // a light ray whose light is in region 1
+  sceneBounds_ = {core::Box{{-10, -4, -10}, {0.5, 1, 0}}, regionBounds_[2]};
+  EXPECT_FALSE(nothingAheadOf(from_, alongX_, 1, 1.5));
+  sceneBounds_.pop_back();  // beyond region 1 the ray leaves the scene
+  EXPECT_TRUE(nothingAheadOf(from_, alongX_, 1, 1.5));
+  // Towards the eye plane (crossed at t = 2, in region 2): its rear part follows.
+  const core::Vec3 nearEye(-1, 0, -2), towardsEye(1, 0, 1);
+  EXPECT_FALSE(nothingAheadOf(nearEye, towardsEye, 1, 0.9));
 }
 
 }  // namespace

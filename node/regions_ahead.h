@@ -1,0 +1,63 @@
+#pragma once
+// What lies ahead of a ray leaving its region (MachineContext::regionBounds): the regions it would cross
+// next, each with the box of the objects it holds. A ray whose part in each of them misses that box, until
+// it leaves the scene's bounds or its interval ends, meets nothing more: the processor it is in ends it, as
+// the last of them would have, instead of passing it on through regions that only pass it on: the same
+// image, fewer messages. Mount 6 at 512 x 512, whose glass spheres' and mountain's rays leave upwards over
+// the slopes of the regions ahead: messages 1.31 -> 1.11 M at 8 x 8, 678 -> 607 k at 4 x 4; wall, 10
+// interleaved rounds, 0.665 -> 0.637 s and 0.530 -> 0.508 s; instructions -0.3% and +0.6% (callgrind,
+// 256 x 256: the test at every region exit costs about what the messages saved cost).
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/box.h"
+#include "node/eye_frame_ray.h"
+#include "node/region_cells.h"
+#include "node/region_map.h"
+#include "node/scene_bounds.h"
+
+namespace raycube::node {
+
+// A region's part of the ray is computed by the region itself when the ray gets there (RegionCells): the
+// box is tested over that part widened by this much of the part's reach, so that a hit a region's rounding
+// would put on the other side of a face is still in an interval tested.
+inline constexpr double kPartWideningRelative = 1e-9;
+
+// Whether the ray (world origin and direction; er, the same in the eye frame), leaving its region at t for
+// region `next`, meets no object in the regions of one cell it would cross from there: true where it would
+// leave the scene's bounds (sceneBounds) or reach the end of its interval (tMax, or infinity: never the eye
+// plane, beyond which the rear objects lie) having missed the box of every region's objects (regionBounds,
+// one per region) on its way. False as soon as a part meets a box, and where no face is crossed (a NaN).
+inline bool nothingAhead(const RegionMap& regions, const std::vector<core::Box>& regionBounds,
+                         const std::vector<core::Box>& sceneBounds, const EyeFrameRay& er,
+                         const core::Vec3& origin, const core::Vec3& direction, int next, double t,
+                         double tMax) {
+  if (regionBounds.empty()) return false;
+  // Most rays enter the next region inside the box of its objects (settled without a division).
+  const core::Vec3 at = origin + t * direction;
+  const core::Box& first = regionBounds[std::size_t(next)];
+  if (glm::all(glm::lessThanEqual(first.lo, at)) && glm::all(glm::lessThanEqual(at, first.hi))) return false;
+  const core::InverseDirection<double> inverse(direction);
+  const ScreenLines& lines = regions.lines();
+  for (int crossed = 0; crossed < regions.processors(); ++crossed) {
+    const double partEnd = er.partEnd(t), tEnd = std::min(partEnd, tMax);
+    const SampleRect& a = regions.areaOf(next);
+    const CellPassage p = passageThrough(er, t, tEnd, lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0),
+                                         lines.at(1, a.y1));
+    const double widening =
+        kPartWideningRelative * (std::abs(t) + (std::isfinite(p.end) ? std::abs(p.end) : 0));
+    double tEnter;
+    if (core::slabsHit(regionBounds[std::size_t(next)], origin, inverse, t - widening, p.end + widening,
+                       tEnter))
+      return false;
+    if (p.reachesEnd) return tEnd >= tMax || partEnd == core::kInfinity;
+    if (p.exit.sStep == 0 && p.exit.qStep == 0) return false;
+    if (!sceneBounds.empty() && !meetsBounds(sceneBounds, origin, direction, p.end, tMax)) return true;
+    next = regions.ownerBeyond(next, er, p.end, p.exit.sStep, p.exit.qStep);
+    t = p.end;
+  }
+  return false;
+}
+
+}  // namespace raycube::node
