@@ -86,7 +86,7 @@ std::string machineTable(const MachineReport& report) {
   std::string text = fmt::format(
       "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, light {}; "
       "forwarded {}; refused pushes {}; steps holding primaries back for the machine's backlog {}; "
-      "rays ended leaving the scene's bounds {}\n",
+      "rays ended with nothing ahead {}\n",
       report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes,
       byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused, held, leftScene);
   const LoadBalance balance = loadBalanceOf(report);
