@@ -4,6 +4,8 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <climits>
 #include <cstdlib>
 
 namespace raycube::host {
@@ -16,7 +18,7 @@ void keepFreedMemory() {
 
 HugePageHeap putHeapOnHugePages(std::size_t reserve) {
   constexpr std::uintptr_t kHugePage = std::uintptr_t(2) << 20;
-  mallopt(M_TOP_PAD, int(reserve));
+  mallopt(M_TOP_PAD, int(std::min<std::size_t>(reserve, INT_MAX)));
   // A block larger than what is left of the heap makes malloc extend it by the reserve, which stays
   // (volatile: the compiler may drop a malloc whose block is never used).
   void* volatile probe = std::malloc(std::size_t(1) << 20);

@@ -74,7 +74,7 @@ struct NodeStats {
   std::array<std::uint64_t, core::kRayKinds> messagesByKind{};  // rays sent to a neighbour, by kind
   std::array<std::uint64_t, kFaces> sent{}, received{};
   std::uint64_t forwarded = 0;      // messages passed on towards a non-adjacent destination (hops)
-  std::uint64_t leftScene = 0;      // rays ended where they left their region: nothing ahead (regions_ahead.h)
+  std::uint64_t leftScene = 0;      // rays ended as they left their region, nothing ahead (regions_ahead.h)
   std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
   std::uint64_t primariesHeld = 0;  // steps with primaries left that found the machine holding them back
   std::uint64_t overflowHighWater = 0;

@@ -37,6 +37,13 @@ inline CellStructure chosenFor(CellStructure requested) {
   return requested == CellStructure::Auto ? CellStructure::Bvh : requested;
 }
 
+// Where the ray meets the face ahead of it of the slab [lo, hi) of screen coordinate `axis` (a super-cell
+// column or row, a region): dir is the sign of that coordinate's change along the ray; infinity where it
+// moves along neither way.
+inline double faceAhead(const EyeFrameRay& ray, int axis, int dir, double lo, double hi) {
+  return dir > 0 ? ray.planeCrossing(axis, hi) : dir < 0 ? ray.planeCrossing(axis, lo) : core::kInfinity;
+}
+
 class RegionCells {
  public:
   // objects: indices into the database, and the eye box of each (boxes[k] is objects[k]'s); only those
@@ -74,13 +81,6 @@ class RegionCells {
   };
   const Column& column(int i, int j) const { return columns_[std::size_t(j) * columnsX_ + i]; }
   static int locateIn(const std::vector<double>& bounds, double value);
-  // Where the ray meets the face of super-cell column or row `index` ahead of it along `axis` (dir: the sign
-  // of its screen coordinate's change); infinity where it moves along neither way.
-  double faceAhead(const EyeFrameRay& ray, int axis, int index, int dir) const {
-    return dir > 0   ? ray.planeCrossing(axis, bounds_[axis][index + 1])
-           : dir < 0 ? ray.planeCrossing(axis, bounds_[axis][index])
-                     : core::kInfinity;
-  }
   template <class Visit>
   WalkResult walkOneCell(const EyeFrameRay& ray, double t, double tEnd, Visit&& visit, RegionExit& exit,
                          std::uint64_t& cellSteps) const;
@@ -106,10 +106,7 @@ struct CellPassage {
 inline CellPassage passageThrough(const EyeFrameRay& ray, double t, double tEnd, double s0, double s1,
                                   double q0, double q1) {
   const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
-  auto faceAhead = [&](int axis, int dir, double lo, double hi) {
-    return dir > 0 ? ray.planeCrossing(axis, hi) : dir < 0 ? ray.planeCrossing(axis, lo) : core::kInfinity;
-  };
-  const double tS = faceAhead(0, sDir, s0, s1), tQ = faceAhead(1, qDir, q0, q1);
+  const double tS = faceAhead(ray, 0, sDir, s0, s1), tQ = faceAhead(ray, 1, qDir, q0, q1);
   CellPassage p;
   p.end = std::max(t, std::min({tS, tQ, tEnd}));
   p.reachesEnd = tEnd <= tS && tEnd <= tQ;
@@ -142,7 +139,8 @@ WalkResult RegionCells::walkColumns(const EyeFrameRay& ray, double t, double tEn
   for (;;) {
     // The column's exit: the face ahead along s, along q, or the end of the interval. A crossing computed
     // behind t (rounding) leaves the column at once with an empty interval.
-    const double tS = faceAhead(ray, 0, i, sDir), tQ = faceAhead(ray, 1, j, qDir);
+    const double tS = faceAhead(ray, 0, sDir, bounds_[0][i], bounds_[0][i + 1]);
+    const double tQ = faceAhead(ray, 1, qDir, bounds_[1][j], bounds_[1][j + 1]);
     const double tColumn = std::max(t, std::min({tS, tQ, tEnd}));
     const Column& col = column(i, j);
     // Depth partitioning: walk the column's cells in z order.
