@@ -17,6 +17,10 @@ struct BasicBox {
   Vec3Of<Real> hi{-kInf, -kInf, -kInf};
 
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+  // Whether p lies in the box, faces included.
+  bool holds(const Vec3Of<Real>& p) const {
+    return glm::all(glm::lessThanEqual(lo, p)) && glm::all(glm::lessThanEqual(p, hi));
+  }
   void extend(const Vec3Of<Real>& p) {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);

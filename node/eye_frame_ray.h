@@ -76,6 +76,9 @@ struct EyeFrameRay {
     const double tz = eyePlaneCrossing();
     return (d.z != 0 && tz > t) ? tz : core::kInfinity;
   }
+  // Whether the part containing t is the last the ray's interval [.., tMax] reaches: nothing is traced
+  // beyond it, whether tMax or the end of the line ends it.
+  bool lastPart(double t, double tMax) const { return partEnd(t) >= tMax; }
 };
 
 }  // namespace raycube::node

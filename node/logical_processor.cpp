@@ -260,10 +260,8 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
     return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *regionBvh_, hit, transmission)
-                      : visitInterval(ray, ta, tb, objects, hit, transmission);
+                                            : visitInterval(ray, ta, tb, objects, hit, transmission);
   };
-  // The part of the ray behind or in front of the eye ended at tEnd: the ray ends, or goes on from there.
-  auto lastPart = [&](double tEnd) { return tEnd >= tMax || er.partEnd(t) == core::kInfinity; };
   auto leaveFor = [&](int owner, double tExit) {
     if (beyondScene(ray.ray, tExit, tMax) ||
         (ahead_.t == core::kInfinity && nothingAhead(er, ray.ray, owner, tExit, tMax))) {
@@ -280,7 +278,8 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     const double tEnd = std::min(er.partEnd(t), tMax);
     if (!er.inFront(t)) {
       // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
-      if ((t < tEnd && !visitInterval(ray, t, tEnd, setup_.rearObjects, hit, transmission)) || lastPart(tEnd))
+      if ((t < tEnd && !visitInterval(ray, t, tEnd, setup_.rearObjects, hit, transmission)) ||
+          er.lastPart(t, tMax))
         return finishRay(ray, hit, transmission);
       t = tEnd;
       // An eye ray is in its own pixel's pyramid wherever it is in front of the eye (3.1), however near the
@@ -300,7 +299,7 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
     const WalkResult result = cells_.walk(er, t, tEnd, column, row, visit, exit, stats_.processed.cellSteps);
     if (result == WalkResult::Exited)
       return leaveFor(context_.regions.ownerBeyond(setup_.id, er, exit.t, exit.sStep, exit.qStep), exit.t);
-    if (result == WalkResult::Stopped || lastPart(tEnd)) return finishRay(ray, hit, transmission);
+    if (result == WalkResult::Stopped || er.lastPart(t, tMax)) return finishRay(ray, hit, transmission);
     t = tEnd;  // on to the rear part
   }
 }

@@ -35,13 +35,11 @@ inline bool nothingAhead(const RegionMap& regions, const std::vector<core::Box>&
                          double tMax) {
   if (regionBounds.empty()) return false;
   // Most rays enter the next region inside the box of its objects (settled without a division).
-  const core::Vec3 at = origin + t * direction;
-  const core::Box& first = regionBounds[std::size_t(next)];
-  if (glm::all(glm::lessThanEqual(first.lo, at)) && glm::all(glm::lessThanEqual(at, first.hi))) return false;
+  if (regionBounds[std::size_t(next)].holds(origin + t * direction)) return false;
   const core::InverseDirection<double> inverse(direction);
   const ScreenLines& lines = regions.lines();
   for (int crossed = 0; crossed < regions.processors(); ++crossed) {
-    const double partEnd = er.partEnd(t), tEnd = std::min(partEnd, tMax);
+    const double tEnd = std::min(er.partEnd(t), tMax);
     const SampleRect& a = regions.areaOf(next);
     const CellPassage p = passageThrough(er, t, tEnd, lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0),
                                          lines.at(1, a.y1));
@@ -51,7 +49,7 @@ inline bool nothingAhead(const RegionMap& regions, const std::vector<core::Box>&
     if (core::slabsHit(regionBounds[std::size_t(next)], origin, inverse, t - widening, p.end + widening,
                        tEnter))
       return false;
-    if (p.reachesEnd) return tEnd >= tMax || partEnd == core::kInfinity;
+    if (p.reachesEnd) return er.lastPart(t, tMax);
     if (p.exit.sStep == 0 && p.exit.qStep == 0) return false;
     if (!sceneBounds.empty() && !meetsBounds(sceneBounds, origin, direction, p.end, tMax)) return true;
     next = regions.ownerBeyond(next, er, p.end, p.exit.sStep, p.exit.qStep);

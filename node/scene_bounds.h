@@ -19,22 +19,22 @@ inline std::optional<double> lastInsideBounds(const std::vector<core::Box>& boun
   std::optional<double> last;
   for (const core::Box& box : bounds) {
     double tEnter, tExit;
-    if (core::slabsSpan(box, origin, inverse, t, tMax, tEnter, tExit) && !(last && *last >= tExit)) last = tExit;
+    if (core::slabsSpan(box, origin, inverse, t, tMax, tEnter, tExit) && !(last && *last >= tExit))
+      last = tExit;
   }
   return last;
 }
 
 // Whether the ray meets one of the boxes within [t, tMax]: lastInsideBounds(...) has a value, found at the
 // first box met (a processor asks this at every region exit).
-inline bool meetsBounds(const std::vector<core::Box>& bounds, const core::Vec3& origin, const core::Vec3& direction,
-                        double t, double tMax) {
+inline bool meetsBounds(const std::vector<core::Box>& bounds, const core::Vec3& origin,
+                        const core::Vec3& direction, double t, double tMax) {
   // Most rays leave a region with objects still around them: a point inside a box settles it, without the
   // slab test's divisions (rounding at a box's face can only keep a ray going, never end one early).
   const core::Vec3 at = origin + t * direction;
-  auto holds = [&](const core::Box& box) {
-    return glm::all(glm::lessThanEqual(box.lo, at)) && glm::all(glm::lessThanEqual(at, box.hi));
-  };
-  if (t <= tMax && std::any_of(bounds.begin(), bounds.end(), holds)) return true;
+  if (t <= tMax &&
+      std::any_of(bounds.begin(), bounds.end(), [&](const core::Box& box) { return box.holds(at); }))
+    return true;
   const core::InverseDirection<double> inverse(direction);
   double tEnter;
   for (const core::Box& box : bounds)
