@@ -111,6 +111,12 @@ TEST(EyeFrameRay, SplitsTheLineAtTheEyePlane) {
   EXPECT_EQ(er.partEnd(0), tz);
   EXPECT_TRUE(er.inFront(tz));
   EXPECT_EQ(er.partEnd(tz), core::kInfinity);
+  // The rear part is the last only for an interval that ends at or before the eye plane; the front part is.
+  EXPECT_FALSE(er.lastPart(0, core::kInfinity));
+  EXPECT_FALSE(er.lastPart(0, 2 * tz));
+  EXPECT_TRUE(er.lastPart(0, tz));
+  EXPECT_TRUE(er.lastPart(0, tz / 2));
+  EXPECT_TRUE(er.lastPart(tz, core::kInfinity));
 }
 
 // A walk hands out contiguous, non-overlapping intervals in t order, starting where it was asked to.

@@ -44,6 +44,17 @@ TEST(SceneBounds, ARayInsideABoxMeetsItWhileItsIntervalLasts) {
   EXPECT_FALSE(meetsBounds(kTwoBoxes, core::Vec3(5.5, 0, 0), core::Vec3(0, 0, -1), 1.5, core::kInfinity));
 }
 
+// A box holds the points of its faces and edges, none outside, and an empty box none.
+TEST(SceneBounds, ABoxHoldsThePointsOfItsFaces) {
+  const core::Box& box = kTwoBoxes.front();
+  EXPECT_TRUE(box.holds(core::Vec3(1.5, 0, 0)));
+  EXPECT_TRUE(box.holds(core::Vec3(1, 0, 0)));
+  EXPECT_TRUE(box.holds(core::Vec3(2, 1, -1)));
+  EXPECT_FALSE(box.holds(core::Vec3(2.000001, 0, 0)));
+  EXPECT_FALSE(box.holds(core::Vec3(1.5, 0, -1.000001)));
+  EXPECT_FALSE(core::Box{}.holds(core::Vec3(0, 0, 0)));
+}
+
 // A ray along a box's face, or parallel to a slab it lies in, is inside (the slab test's NaNs leave that
 // slab unconstrained): conservative, never a ray ended that could touch a box.
 TEST(SceneBounds, RaysGrazingABoxCountAsInside) {
