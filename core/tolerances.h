@@ -31,4 +31,10 @@ inline constexpr double kFloatHitErrorRelative = 0x1p-22;
 // depth scale are such apex artifacts, not crossings in front of the eye.
 inline constexpr double kApexRelative = 0x1p-40;
 
+// A region's part of a ray is computed by the region itself when the ray gets there (RegionCells): a ray
+// leaving its region tests the box of each region ahead (node/regions_ahead.h) over that region's part
+// widened by this much of the part's reach, so that a hit a region's rounding would put on the other side
+// of a face is still in an interval tested.
+inline constexpr double kPartWideningRelative = 1e-9;
+
 }  // namespace raycube::core

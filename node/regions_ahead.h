@@ -12,17 +12,13 @@
 #include <vector>
 
 #include "core/box.h"
+#include "core/tolerances.h"
 #include "node/eye_frame_ray.h"
 #include "node/region_cells.h"
 #include "node/region_map.h"
 #include "node/scene_bounds.h"
 
 namespace raycube::node {
-
-// A region's part of the ray is computed by the region itself when the ray gets there (RegionCells): the
-// box is tested over that part widened by this much of the part's reach, so that a hit a region's rounding
-// would put on the other side of a face is still in an interval tested.
-inline constexpr double kPartWideningRelative = 1e-9;
 
 // Whether the ray (world origin and direction; er, the same in the eye frame), leaving its region at t for
 // region `next`, meets no object in the regions of one cell it would cross from there: true where it would
@@ -44,7 +40,7 @@ inline bool nothingAhead(const RegionMap& regions, const std::vector<core::Box>&
     const CellPassage p = passageThrough(er, t, tEnd, lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0),
                                          lines.at(1, a.y1));
     const double widening =
-        kPartWideningRelative * (std::abs(t) + (std::isfinite(p.end) ? std::abs(p.end) : 0));
+        core::kPartWideningRelative * (std::abs(t) + (std::isfinite(p.end) ? std::abs(p.end) : 0));
     double tEnter;
     if (core::slabsHit(regionBounds[std::size_t(next)], origin, inverse, t - widening, p.end + widening,
                        tEnter))
