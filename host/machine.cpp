@@ -197,9 +197,9 @@ struct PrunedDatabase {
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
 PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& view,
-                             const node::RegionMap& regions, const node::ScreenLines& lines,
-                             const std::vector<node::EyeBox>& boxes, const BoxTree& inEyeFrame,
-                             const BoxTree& inWorld, const std::vector<core::Box>& worldBoxesForBounds,
+                             const node::RegionMap& regions, const std::vector<node::EyeBox>& boxes,
+                             const BoxTree& inEyeFrame, const BoxTree& inWorld,
+                             const std::vector<core::Box>& worldBoxesForBounds,
                              const MachineSettings& machine) {
   const core::Scene& scene = shading.scene();
   std::vector<std::uint32_t> rear;
@@ -222,9 +222,8 @@ PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& vie
   std::vector<std::vector<std::uint32_t>> heldBy(setups.size());
   const std::vector<std::uint32_t> everyObject = core::everyObjectOf(scene);
   parallelFor(regions.processors(), [&](int p) {
-    const node::SampleRect a = regions.areaOf(p);
-    const node::ColumnSlab region{
-        lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0), lines.at(1, a.y1), 0, core::kInfinity};
+    const node::ScreenRect r = regions.screenRectOf(p);
+    const node::ColumnSlab region{r.s0, r.s1, r.q0, r.q1, 0, core::kInfinity};
     node::NodeSetup setup;
     setup.id = p;
     setup.cells = machine.emulate && machine.cells == node::CellStructure::Auto ? node::CellStructure::Paper
@@ -410,9 +409,8 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   progress.phase("pruning");
   const SpatialQueries spatial = queries.get();
   const std::vector<core::Box> noBoxes;
-  PrunedDatabase pruned =
-      pruneDatabase(shading, view, context.regions, context.lines(), boxes, spatial.inEyeFrame,
-                    spatial.inWorld, endRaysLeavingScene ? worldBoxes : noBoxes, machine);
+  PrunedDatabase pruned = pruneDatabase(shading, view, context.regions, boxes, spatial.inEyeFrame,
+                                        spatial.inWorld, endRaysLeavingScene ? worldBoxes : noBoxes, machine);
   std::vector<node::NodeSetup>& setups = pruned.setups;
   context.regionBounds = widenedForFloatHits(std::move(pruned.regionBounds), sceneExtent);
   // The processors' BVHs keep the sampling tree's shape (NodeSetup::sceneShape) and their light rays use the

@@ -95,7 +95,7 @@ class RegionCells {
   std::size_t objectCount_ = 0;
 };
 
-// A ray's way through a cell spanning the screen's [s0, s1) x [q0, q1) (a region of one cell), from t to at
+// A ray's way through a cell spanning the screen's rectangle `cell` (a region of one cell), from t to at
 // most tEnd: the cell's interval [t, end), and whether the ray reaches tEnd in it or leaves it through the
 // faces of `exit` (a crossing rounded behind t leaves at once; no face at all where a NaN hid it).
 struct CellPassage {
@@ -103,10 +103,9 @@ struct CellPassage {
   bool reachesEnd = false;
   RegionExit exit;
 };
-inline CellPassage passageThrough(const EyeFrameRay& ray, double t, double tEnd, double s0, double s1,
-                                  double q0, double q1) {
+inline CellPassage passageThrough(const EyeFrameRay& ray, double t, double tEnd, const ScreenRect& cell) {
   const int sDir = ray.screenDirection(0), qDir = ray.screenDirection(1);
-  const double tS = faceAhead(ray, 0, sDir, s0, s1), tQ = faceAhead(ray, 1, qDir, q0, q1);
+  const double tS = faceAhead(ray, 0, sDir, cell.s0, cell.s1), tQ = faceAhead(ray, 1, qDir, cell.q0, cell.q1);
   CellPassage p;
   p.end = std::max(t, std::min({tS, tQ, tEnd}));
   p.reachesEnd = tEnd <= tS && tEnd <= tQ;
@@ -120,7 +119,7 @@ template <class Visit>
 WalkResult RegionCells::walkOneCell(const EyeFrameRay& ray, double t, double tEnd, Visit&& visit,
                                     RegionExit& exit, std::uint64_t& cellSteps) const {
   const CellPassage p =
-      passageThrough(ray, t, tEnd, bounds_[0][0], bounds_[0][1], bounds_[1][0], bounds_[1][1]);
+      passageThrough(ray, t, tEnd, ScreenRect{bounds_[0][0], bounds_[0][1], bounds_[1][0], bounds_[1][1]});
   ++cellSteps;
   const std::vector<std::uint32_t>& objects = columns_.front().cellObjects.front();
   if (p.end > t && !objects.empty() && !visit(t, p.end, objects)) return WalkResult::Stopped;

@@ -30,6 +30,7 @@ class RegionMap {
   int gridColumns() const { return gridColumns_; }  // > 0: built as a uniform grid of that many columns
   const ScreenLines& lines() const { return lines_; }
   const SampleRect& areaOf(int id) const { return areas_[id]; }
+  ScreenRect screenRectOf(int id) const { return lines_.around(areas_[id]); }
   const std::vector<SampleRect>& areas() const { return areas_; }
   int ownerOfSample(int sx, int sy) const { return owner_[std::size_t(sy) * samplesX_ + sx]; }
 
@@ -37,10 +38,9 @@ class RegionMap {
   int ownerAt(const EyeFrameRay& ray, double t) const;
   // Whether region `id` holds the ray at t (front part only): a quick test before the owner lookup.
   bool holds(int id, const EyeFrameRay& ray, double t) const {
-    const SampleRect& a = areas_[id];
+    const ScreenRect r = screenRectOf(id);
     const double s = ray.screenAt(0, t), q = ray.screenAt(1, t);
-    return s >= lines_.at(0, a.x0) && s < lines_.at(0, a.x1) && q >= lines_.at(1, a.y0) &&
-           q < lines_.at(1, a.y1);
+    return s >= r.s0 && s < r.s1 && q >= r.q0 && q < r.q1;
   }
   // The processor a ray enters when it leaves region `id` at t through the faces (sStep, qStep).
   int ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, int qStep) const;

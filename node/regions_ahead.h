@@ -33,12 +33,9 @@ inline bool nothingAhead(const RegionMap& regions, const std::vector<core::Box>&
   // Most rays enter the next region inside the box of its objects (settled without a division).
   if (regionBounds[std::size_t(next)].holds(origin + t * direction)) return false;
   const core::InverseDirection<double> inverse(direction);
-  const ScreenLines& lines = regions.lines();
   for (int crossed = 0; crossed < regions.processors(); ++crossed) {
     const double tEnd = std::min(er.partEnd(t), tMax);
-    const SampleRect& a = regions.areaOf(next);
-    const CellPassage p = passageThrough(er, t, tEnd, lines.at(0, a.x0), lines.at(0, a.x1), lines.at(1, a.y0),
-                                         lines.at(1, a.y1));
+    const CellPassage p = passageThrough(er, t, tEnd, regions.screenRectOf(next));
     const double widening =
         core::kPartWideningRelative * (std::abs(t) + (std::isfinite(p.end) ? std::abs(p.end) : 0));
     double tEnter;

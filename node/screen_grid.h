@@ -19,6 +19,12 @@ struct SampleRect {
   bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
 };
 
+// Where a rectangle of samples lies on the screen: [s0, s1) x [q0, q1), its faces' coordinates (outermost
+// ones at infinity).
+struct ScreenRect {
+  double s0 = 0, s1 = 0, q0 = 0, q1 = 0;
+};
+
 // Screen coordinates of sample boundaries; boundary 0 and boundary N are at infinity.
 class ScreenLines {
  public:
@@ -40,6 +46,9 @@ class ScreenLines {
   // axis 0: columns (s), axis 1: rows (q)
   double at(int axis, int k) const { return axis == 0 ? s_[k] : q_[k]; }
   int samples(int axis) const { return axis == 0 ? samplesX_ : samplesY_; }
+  ScreenRect around(const SampleRect& a) const {
+    return {at(0, a.x0), at(0, a.x1), at(1, a.y0), at(1, a.y1)};
+  }
 
   // The sample k in [lo, hi) whose boundaries hold value (at(k) <= value < at(k + 1)), clamped to the range;
   // lo for NaN. The boundaries are evenly spaced: a guess from the spacing, corrected against the table (a

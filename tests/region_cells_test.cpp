@@ -321,6 +321,37 @@ TEST(RegionMap, OwnersAndRoutesOnTheGrid) {
   EXPECT_EQ(map.ownerAt(EyeFrameRay::of(eye, f.view), 1.0), map.ownerOfSample(30, 30));
 }
 
+// A region's screen rectangle is the lines of its area, infinite on the screen's edges; a ray's points in
+// front of the eye lie in the region that holds them exactly where they lie inside its rectangle.
+TEST(RegionMap, ScreenRectIsTheLinesOfTheAreaAndHoldsWhatTheRegionHolds) {
+  Fixture f;
+  const RegionMap map = RegionMap::grid({0, 20, 40, 64}, {0, 16, 48}, f.lines);
+  const ScreenRect middle = map.screenRectOf(1), corner = map.screenRectOf(5);
+  EXPECT_EQ(middle.s0, f.lines.at(0, 20));
+  EXPECT_EQ(middle.s1, f.lines.at(0, 40));
+  EXPECT_EQ(middle.q0, -core::kInfinity);
+  EXPECT_EQ(middle.q1, f.lines.at(1, 16));
+  EXPECT_EQ(corner.s1, core::kInfinity);
+  EXPECT_EQ(corner.q1, core::kInfinity);
+  std::mt19937 random(7);
+  int inside = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const EyeFrameRay er = EyeFrameRay::of(rayNearTheMiddle(random), f.view);
+    const double t = 0.5;
+    if (!er.inFront(t)) continue;
+    const int owner = map.ownerAt(er, t);
+    for (int id = 0; id < map.processors(); ++id) {
+      const ScreenRect r = map.screenRectOf(id);
+      const double s = er.screenAt(0, t), q = er.screenAt(1, t);
+      const bool inRect = s >= r.s0 && s < r.s1 && q >= r.q0 && q < r.q1;
+      EXPECT_EQ(map.holds(id, er, t), inRect);
+      EXPECT_EQ(inRect, id == owner);
+    }
+    inside += owner == 1;
+  }
+  EXPECT_GT(inside, 0);
+}
+
 // Where a ray leaving a region goes: on a uniform grid the next cell across the faces it crosses (corners
 // included), the very processor the same areas name when looked up as an arbitrary tiling.
 TEST(RegionMap, GridNamesTheOwnerBeyondAnExitAsTheGeneralLookupDoes) {
