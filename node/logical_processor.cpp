@@ -20,6 +20,13 @@ std::size_t mailboxesFor(const NodeSetup& setup) {
   return end;
 }
 
+// A ray setting out from where it starts, for processor `destination`, carrying nothing yet. Built where it
+// is used (see LogicalProcessor::local_).
+template <class Real>
+BasicRayMessage<Real> departing(const core::BasicTracedRay<Real>& ray, int destination) {
+  return {.ray = ray, .tEnter = ray.ray.tMin, .destination = std::uint16_t(destination)};
+}
+
 // Per neighbour, in neighbours() order: the face of region `id` it lies across.
 std::vector<Face> facesTowardNeighbours(const RegionMap& regions, int id) {
   std::vector<Face> faces;
@@ -135,11 +142,10 @@ bool LogicalProcessor<Real>::shootNextPrimary() {
   const int sx = area_.x0 + int(sample % area_.width());
   const int sy = area_.y0 + int(sample / area_.width());
   ++nextPrimary_;
-  Message m;
-  m.ray = core::eyeRayOf<Real>(context_.view, sx, sy, k);
-  m.tEnter = m.ray.ray.tMin;
-  m.destination = std::uint16_t(setup_.id);
   ++stats_.spawned[std::size_t(core::RayKind::Eye)];
+  // departing() would copy the eye ray from a temporary: built in place instead (see local_).
+  Message m{.ray = core::eyeRayOf<Real>(context_.view, sx, sy, k), .destination = std::uint16_t(setup_.id)};
+  m.tEnter = m.ray.ray.tMin;
   evaluate(m, true);
   evaluateLocalRays();
   return true;
@@ -149,7 +155,7 @@ bool LogicalProcessor<Real>::shootNextPrimary() {
 template <class Real>
 void LogicalProcessor<Real>::evaluateLocalRays() {
   while (!local_.empty()) {
-    const Message next = local_.back();
+    const Message next = departing(local_.back(), setup_.id);
     local_.pop_back();
     evaluate(next, false);
   }
@@ -240,7 +246,7 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
 // evaluate_ray of 3.5.2: follow the ray through this region's cells from where it entered; it ends here
 // (hit, light reached, or escaped) or leaves through a face towards the processor whose region it enters.
 template <class Real>
-void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
+void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
   const TracedRay& ray = m.ray;
   ++stats_.processed.of(ray.kind);
   if (++rayStamp_ == 0) {  // stamps wrapped: forget every mailbox
@@ -268,11 +274,11 @@ void LogicalProcessor<Real>::evaluate(Message m, bool primary) {
       ++stats_.leftScene;
       return finishRay(ray, hit, transmission);
     }
-    m.tEnter = tExit;
-    m.transmission = light ? transmission : (ahead_.found() ? ahead_.t : 1.0);
-    m.ahead = light ? kNothingAhead : ahead_.object;
-    m.destination = std::uint16_t(owner);
-    send(m);
+    send(Message{.ray = ray,
+                 .tEnter = tExit,
+                 .transmission = light ? transmission : (ahead_.found() ? ahead_.t : 1.0),
+                 .destination = std::uint16_t(owner),
+                 .ahead = light ? kNothingAhead : ahead_.object});
   };
   for (;;) {
     const double tEnd = std::min(er.partEnd(t), tMax);
@@ -371,22 +377,19 @@ void LogicalProcessor<Real>::deliver(const core::BasicRayOutcome<Real>& outcome)
   shipContributions(outcome);
   for (const TracedRay& spawned : outcome.spawned) {
     ++stats_.spawned[std::size_t(spawned.kind)];
-    Message m;
-    m.ray = spawned;
-    m.tEnter = spawned.ray.tMin;
+    const double tEnter = spawned.ray.tMin;
     const EyeFrameRay er = EyeFrameRay::of(spawned.ray, context_.view);
-    const int owner = !er.inFront(m.tEnter) || context_.regions.holds(setup_.id, er, m.tEnter)
+    const int owner = !er.inFront(tEnter) || context_.regions.holds(setup_.id, er, tEnter)
                           ? setup_.id
-                          : context_.regions.ownerAt(er, m.tEnter);
-    m.destination = std::uint16_t(owner);
+                          : context_.regions.ownerAt(er, tEnter);
     if (owner != setup_.id) {
-      send(m);
+      send(departing(spawned, owner));
     } else if (spawned.kind == core::RayKind::Light && startsInLightSourceBox(er.o)) {
       ++stats_.processed.of(spawned.kind);
       shade(spawned, core::Hit{}, traceWhereItStarts(spawned), lightOutcome_);
       shipContributions(lightOutcome_);  // a light ray spawns nothing
     } else {
-      local_.push_back(m);
+      local_.push_back(spawned);
     }
   }
 }
