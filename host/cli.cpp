@@ -299,7 +299,7 @@ std::vector<std::pair<std::string, std::string>> settingsOf(const RenderCommand&
                      {"load metric", cmd.loadMetric},
                      {"sub-sampling window", std::to_string(cmd.machine.subsampleWindow)},
                      {"light rays", cmd.lightRays},
-                     {"FIFO capacity", std::to_string(cmd.machine.queueCapacity)},
+                     {"FIFO capacity", std::to_string(fifoRaysFor(cmd.machine))},
                      {"cells", cmd.cells},
                      {"cell level", std::to_string(cmd.machine.cellLevel)}});
   return s;
@@ -477,7 +477,10 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
     render->add_option("--procs", cmd.procs,
                        "Logical processors as RxC (rows x columns), default 4x4; with --balance bsp only R*C "
                        "counts (at most 1024), with auto R x C is the grid it weighs against the BSP");
-  render->add_option("--queue-capacity", cmd.machine.queueCapacity, "Rays per face FIFO (the iPSC had 128)")
+  render
+      ->add_option_function<std::size_t>(
+          "--queue-capacity", [&cmd](const std::size_t& rays) { cmd.machine.queueCapacity = rays; },
+          "Rays per face FIFO: 512 on threads; the iPSC's 128 in emulated time and over MPI")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
   render
       ->add_option(

@@ -35,11 +35,11 @@ class Engines final : public DistributedEngines {
       queues::MpiLink* link = hostMpiLink();
       if (link == nullptr)
         throw std::invalid_argument("the MPI engine runs on rank 0 of mpirun (host/mpi_session.h)");
-      return std::make_unique<MpiMachine<Real>>(*link, settings.queueCapacity, settings.rayBatch,
+      return std::make_unique<MpiMachine<Real>>(*link, fifoRaysFor(settings), settings.rayBatch,
                                                 settings.jitterSeed);
     }
     if (!settings.emulate) throw std::invalid_argument("the distributed engines run emulated or over MPI");
-    return std::make_unique<SimulatedMachine<Real>>(*settings.emulate, settings.queueCapacity, hypercubeNode);
+    return std::make_unique<SimulatedMachine<Real>>(*settings.emulate, fifoRaysFor(settings), hypercubeNode);
   }
 };
 

@@ -460,7 +460,10 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
 
 template <class Real>
 RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& settings,
-                             const MachineSettings& machine, MachineReport* report) {
+                             const MachineSettings& asked, MachineReport* report) {
+  // The engine's own FIFO capacity made explicit, for the engine and the report.
+  MachineSettings machine = asked;
+  machine.queueCapacity = fifoRaysFor(asked);
   SynthesisClock clock{Clock::now(), Clock::now(), Clock::now()};
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);

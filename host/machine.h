@@ -38,7 +38,8 @@ struct MachineSettings {
   Balance balance = Balance::Auto;  // with Bsp only rows x columns (the processor count) matters
   int subsampleWindow = 8;         // 3.7.1: one sub-sampled pixel per w x w window
   LoadMetric loadMetric = LoadMetric::Cost;
-  std::size_t queueCapacity = 128;  // rays per face FIFO, as on the iPSC (3.5.2)
+  // Rays per face FIFO (3.5.2); none: the engine's own (fifoRaysFor).
+  std::optional<std::size_t> queueCapacity;
   // How each region holds its objects. Auto: a BVH in every region (node::chosenFor), but the paper's
   // cells whenever the machine is emulated, whose costs were fitted to them (table 2).
   node::CellStructure cells = node::CellStructure::Auto;
@@ -60,6 +61,14 @@ struct MachineSettings {
   // was fitted to, whatever this says.
   bool endRaysLeavingScene = true;
 };
+
+// The FIFO capacity of a run: the one asked for, or the engine's own, node::scheduling::kThreadsFifoRays on
+// threads and the iPSC's kIpscFifoRays in emulated time and over MPI.
+inline std::size_t fifoRaysFor(const MachineSettings& machine) {
+  if (machine.queueCapacity) return *machine.queueCapacity;
+  return machine.emulate || machine.mpi ? node::scheduling::kIpscFifoRays
+                                        : node::scheduling::kThreadsFifoRays;
+}
 
 struct ProcessorReport {
   node::NodeStats node;

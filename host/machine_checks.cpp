@@ -38,7 +38,8 @@ void requireMachineFits(const MachineSettings& machine, const core::View& view) 
         fmt::format("--procs {}x{}: --balance bsp maps at most {} processors onto the hypercube, got {} "
                     "(use fewer processors or --balance uniform)",
                     machine.rows, machine.columns, kMaxMappedVertices, processors));
-  if (machine.queueCapacity < 1) throw std::invalid_argument("--queue-capacity must be at least 1");
+  if (machine.queueCapacity && *machine.queueCapacity < 1)
+    throw std::invalid_argument("--queue-capacity must be at least 1");
   if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
 }
 

@@ -9,7 +9,7 @@ template <class Real>
 std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings,
                                                 const std::vector<std::uint32_t>& hypercubeNode) {
   if (settings.mpi || settings.emulate) return distributedEngines().make<Real>(settings, hypercubeNode);
-  return std::make_unique<ThreadedMachine<Real>>(settings.queueCapacity, settings.jitterSeed,
+  return std::make_unique<ThreadedMachine<Real>>(fifoRaysFor(settings), settings.jitterSeed,
                                                  settings.backlogLimit);
 }
 

@@ -87,7 +87,7 @@ std::string machineTable(const MachineReport& report) {
       "  machine {}x{}, FIFO {} rays of {} bytes; messages: eye {}, reflected {}, refracted {}, light {}; "
       "forwarded {}; refused pushes {}; steps holding primaries back for the machine's backlog {}; "
       "rays ended with nothing ahead {}\n",
-      report.settings.rows, report.settings.columns, report.settings.queueCapacity, report.messageBytes,
+      report.settings.rows, report.settings.columns, fifoRaysFor(report.settings), report.messageBytes,
       byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused, held, leftScene);
   const LoadBalance balance = loadBalanceOf(report);
   const bool mapped = !report.hypercubeNode.empty();
@@ -207,7 +207,7 @@ nlohmann::json machineJson(const MachineReport& report) {
             {"costMaxOverMean", balance.costMaxOverMean},
             {"costMinOverMean", balance.costMinOverMean}}},
           {"columns", report.settings.columns},
-          {"queueCapacity", report.settings.queueCapacity},
+          {"queueCapacity", fifoRaysFor(report.settings)},
           {"cells", std::array{"auto", "paper", "bvh"}[std::size_t(report.settings.cells)]},
           {"cellLevel", report.settings.cellLevel},
           {"messageBytes", report.messageBytes},

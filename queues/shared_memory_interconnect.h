@@ -1,11 +1,11 @@
 #pragma once
 // The machine's interconnect in one address space (Priol & Bouatouch 3.5): a bounded lock-free FIFO per
-// directed adjacency (capacity --queue-capacity, 128 as on the iPSC), a doorbell per processor (rung once per
-// step of a neighbour that sent it rays: ringNeighbours), a token mailbox per processor on the ring (3.6), a
-// block channel per processor to the host (3.4), and the count of rays waiting for room machine-wide, which
-// holds primary rays back (scheduling::kMachineBacklogLimit).
-// Each processor talks to it through its endpoint (the node's transport); the threads' driver waits on the
-// processor's doorbell, and the host drains the channel.
+// directed adjacency (capacity --queue-capacity: 512 rays, node::scheduling::kThreadsFifoRays), a doorbell
+// per processor (rung once per step of a neighbour that sent it rays: ringNeighbours), a token mailbox per
+// processor on the ring (3.6), a block channel per processor to the host (3.4), and the count of rays waiting
+// for room machine-wide, which holds primary rays back (scheduling::kMachineBacklogLimit). Each processor
+// talks to it through its endpoint (the node's transport); the threads' driver waits on the processor's
+// doorbell, and the host drains the channel.
 #include <atomic>
 #include <cstdint>
 #include <memory>

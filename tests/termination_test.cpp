@@ -135,7 +135,7 @@ TEST(TerminationTest, NeverDeclaredEarlyUnderRandomDelays) {
     const std::string label = "jitter seed " + std::to_string(machine.jitterSeed) + ", balls2 " +
                               std::to_string(side) + "px, " + std::to_string(machine.rows) + "x" +
                               std::to_string(machine.columns) + ", capacity " +
-                              std::to_string(machine.queueCapacity);
+                              std::to_string(fifoRaysFor(machine));
     MachineReport report;
     const RenderResult result = renderMachineWatched(scene, settingsFor(side), machine, report, label);
     const int before = testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count();
