@@ -15,6 +15,7 @@
 #include "node/logical_processor.h"
 #include "node/scheduling.h"
 #include "queues/queue_stats.h"
+#include "queues/spsc_queue.h"
 
 namespace raycube::host {
 
@@ -63,11 +64,10 @@ struct MachineSettings {
 };
 
 // The FIFO capacity of a run: the one asked for, or the engine's own, node::scheduling::kThreadsFifoRays on
-// threads and the iPSC's kIpscFifoRays in emulated time and over MPI.
+// threads and the iPSC's queues::kPaperFifoCapacity in emulated time and over MPI.
 inline std::size_t fifoRaysFor(const MachineSettings& machine) {
   if (machine.queueCapacity) return *machine.queueCapacity;
-  return machine.emulate || machine.mpi ? node::scheduling::kIpscFifoRays
-                                        : node::scheduling::kThreadsFifoRays;
+  return machine.emulate || machine.mpi ? queues::kPaperFifoCapacity : node::scheduling::kThreadsFifoRays;
 }
 
 struct ProcessorReport {

@@ -35,15 +35,15 @@ inline constexpr std::size_t machineBacklogRelease(std::size_t limit) {
 // 294 / 258 k, mount 6 2.14 / 2.14 / 2.13 M, whose 2.1 M exits would pay 16 boxes' tests for nothing.
 inline constexpr std::size_t kSceneBoundsBoxes = 4;
 
-// Rays a face's FIFO holds (3.5.2: "FIFO queues can store 128 rays"). The emulated iPSC keeps the paper's
-// 128, with which its clock and section 3.6's saturation were measured, and so do MPI ranks, whose FIFO is a
-// link's credits (measured at 128). Threads sharing two cores take 512: a processor waiting for room in a
-// full FIFO gives its core to another thread, and 128 rays made short turns. Mount 6 at 512 x 512, 10
-// interleaved rounds, wall: 4 x 4 0.400 -> 0.370 s (image-parallel 0.270 s), 8 x 8 0.495 -> 0.450 s, context
-// switches of a 4 x 4 run 11,000 -> 4,400; 256 rays: 0.385 and 0.480 s. Paired 8 rounds at 8 x 8: balls 4
-// 0.98, jacks 4 0.99, lattice 12 0.96, tetra 6 1.05 (0.10 s runs). Peak memory 1-10 MB more, as rings cycle
-// through their slots: jacks 4 at 8 x 8 25.9 -> 35.5 MB (224 rings of 64 KB), image-parallel's 19.1 MB.
-inline constexpr std::size_t kIpscFifoRays = 128;
+// Rays a face's FIFO holds on threads. The paper's FIFO queues "can store 128 rays" (3.5.2,
+// queues::kPaperFifoCapacity): the emulated iPSC keeps them, with which its clock and section 3.6's
+// saturation were measured, and so do MPI ranks, whose FIFO is a link's credits (measured at 128). Threads
+// sharing two cores take 512: a processor waiting for room in a full FIFO gives its core to another thread,
+// and 128 rays made short turns. Mount 6 at 512 x 512, 10 interleaved rounds, wall: 4 x 4 0.400 -> 0.370 s
+// (image-parallel 0.270 s), 8 x 8 0.495 -> 0.450 s, context switches of a 4 x 4 run 11,000 -> 4,400; 256
+// rays: 0.385 and 0.480 s. Paired 8 rounds at 8 x 8: balls 4 0.98, jacks 4 0.99, lattice 12 0.96, tetra
+// 6 1.05 (0.10 s runs). Peak memory 1-10 MB more, as rings cycle through their slots: jacks 4 at 8 x 8 25.9
+// -> 35.5 MB (224 rings of 64 KB), image-parallel's 19.1 MB.
 inline constexpr std::size_t kThreadsFifoRays = 512;
 
 // Primary rays a processor's thread shoots in one step when no ray arrived: its step's bookkeeping (a scan

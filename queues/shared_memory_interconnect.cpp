@@ -12,6 +12,13 @@ std::vector<Doorbell*> rawBells(const std::vector<std::unique_ptr<Doorbell>>& be
   return raw;
 }
 
+// The slots of every FIFO: one per directed adjacency.
+std::size_t fifoSlotsOf(const node::RegionMap& regions, std::size_t queueCapacity) {
+  std::size_t fifos = 0;
+  for (int p = 0; p < regions.processors(); ++p) fifos += regions.neighbours(p).size();
+  return fifos * spscSlotsFor(queueCapacity);
+}
+
 }  // namespace
 
 template <class Real>
@@ -103,6 +110,7 @@ SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& 
           bells.push_back(std::make_unique<Doorbell>(FenceMode::kSymmetric));
         return bells;
       }()),
+      fifoSlots_(fifoSlotsOf(regions, queueCapacity)),
       channel_(std::size_t(regions.processors()),
                node::scheduling::contributionBlocksPerProcessor(std::size_t(regions.processors())),
                rawBells(bells_)) {
@@ -115,7 +123,8 @@ SharedMemoryInterconnect<Real>::SharedMemoryInterconnect(const node::RegionMap& 
     // No consumer bell: a FIFO's consumer is woken once per step of its producer (ringNeighbours).
     for (std::size_t k = 0; k < regions.neighbours(p).size(); ++k)
       outgoing_[p].push_back(std::make_unique<RayQueue>(
-          SpscOptions{.capacity = queueCapacity, .consumerBell = nullptr, .producerBell = bells_[p].get()}));
+          SpscOptions{.capacity = queueCapacity, .consumerBell = nullptr, .producerBell = bells_[p].get()},
+          fifoSlots_));
   }
   for (int p = 0; p < processors; ++p) endpoints_.push_back(std::make_unique<Endpoint>(*this, p));
 }

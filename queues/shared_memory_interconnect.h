@@ -70,6 +70,7 @@ class SharedMemoryInterconnect {
   const node::RegionMap& regions_;
   const std::int64_t backlogLimit_, backlogRelease_;
   std::vector<std::unique_ptr<Doorbell>> bells_;
+  SlotStorage<node::BasicRayMessage<Real>> fifoSlots_;  // every FIFO's, in one block (see SlotStorage)
   // outgoing_[p][k]: from processor p to its k-th neighbour
   std::vector<std::vector<std::unique_ptr<RayQueue>>> outgoing_;
   std::vector<std::unique_ptr<Mailbox>> mailboxes_;

@@ -34,6 +34,41 @@ inline std::size_t occupancySamplePeriod(std::size_t capacity) {
   return std::clamp<std::size_t>(std::bit_ceil(capacity) / 8, 1, 64);
 }
 
+// The slots a queue of this capacity takes: the capacity rounded up to a power of two, so that the wrap of
+// its indices lands on slot 0 whatever the capacity.
+inline std::size_t spscSlotsFor(std::size_t capacity) {
+  return std::bit_ceil(capacity);
+}
+
+// Uninitialised storage for messages, carved into the slots of queues: slots are written before they are
+// read (T is trivially copyable, so the allocation holds its objects), and a page no message was ever
+// written to is never touched. A machine's FIFOs share one: each allocation of its own would have the
+// allocator write its bookkeeping beside every queue, touching every queue's first page (on huge pages,
+// 2 MB each) while the machine is set up, though most of 64 processors' FIFOs never fill.
+template <class T>
+class SlotStorage {
+ public:
+  explicit SlotStorage(std::size_t count)
+      : count_(count),
+        slots_(static_cast<T*>(::operator new[](count * sizeof(T), std::align_val_t{alignof(T)}))) {}
+  ~SlotStorage() { ::operator delete[](slots_, std::align_val_t{alignof(T)}); }
+  SlotStorage(const SlotStorage&) = delete;
+  SlotStorage& operator=(const SlotStorage&) = delete;
+
+  // The next `count` slots not handed out yet.
+  std::span<T> take(std::size_t count) {
+    if (count > count_ - taken_)
+      throw std::length_error("SlotStorage: " + std::to_string(count) + " slots asked, " +
+                              std::to_string(count_ - taken_) + " left");
+    taken_ += count;
+    return {slots_ + taken_ - count, count};
+  }
+
+ private:
+  std::size_t count_, taken_ = 0;
+  T* slots_;
+};
+
 struct SpscOptions {
   std::size_t capacity = kPaperFifoCapacity;  // any value >= 1
   Doorbell* consumerBell = nullptr;           // rung after every push; the consumer sleeps on it when empty
@@ -56,11 +91,18 @@ class alignas(kCacheLine) SpscQueue {
   explicit SpscQueue(std::size_t capacity = kPaperFifoCapacity)
       : SpscQueue(SpscOptions{.capacity = capacity}) {}
 
-  explicit SpscQueue(const SpscOptions& options)
+  explicit SpscQueue(const SpscOptions& options) : SpscQueue(options, nullptr) {}
+
+  // In slots of `storage`, which must outlive the queue.
+  SpscQueue(const SpscOptions& options, SlotStorage<T>& storage) : SpscQueue(options, &storage) {}
+
+ private:
+  SpscQueue(const SpscOptions& options, SlotStorage<T>* shared)
       : capacity_(checkedCapacity(options.capacity)),
-        mask_(std::bit_ceil(options.capacity) - 1),
+        mask_(spscSlotsFor(options.capacity) - 1),
         firstIndex_(options.firstIndex),
-        slots_(allocateSlots(mask_ + 1)),
+        own_(shared ? nullptr : std::make_unique<SlotStorage<T>>(mask_ + 1)),
+        slots_((shared ? *shared : *own_).take(mask_ + 1).data()),
         consumerBell_(options.consumerBell),
         producerBell_(options.producerBell),
         wait_(options.wait) {
@@ -69,6 +111,7 @@ class alignas(kCacheLine) SpscQueue {
     tailCache_ = headCache_ = options.firstIndex;
   }
 
+ public:
   SpscQueue(const SpscQueue&) = delete;
   SpscQueue& operator=(const SpscQueue&) = delete;
 
@@ -320,16 +363,9 @@ class alignas(kCacheLine) SpscQueue {
   const std::size_t capacity_;
   const std::size_t mask_;
   const std::uint64_t firstIndex_;
-  // Slots are written before they are read, so they are left uninitialised (T is trivially copyable, so
-  // the allocation holds its objects) and their pages are touched only when used: a 64-processor machine
-  // has 9 MB of FIFOs and contribution blocks, most of it never filled, and zeroing it cost its start.
-  struct FreeSlots {
-    void operator()(T* slots) const { ::operator delete[](slots, std::align_val_t{alignof(T)}); }
-  };
-  static T* allocateSlots(std::size_t count) {
-    return static_cast<T*>(::operator new[](count * sizeof(T), std::align_val_t{alignof(T)}));
-  }
-  const std::unique_ptr<T[], FreeSlots> slots_;
+  // Its own slots, or none where it takes them from a shared SlotStorage.
+  const std::unique_ptr<SlotStorage<T>> own_;
+  T* const slots_;
   Doorbell* const consumerBell_;
   Doorbell* const producerBell_;
   const WaitPolicy wait_;
