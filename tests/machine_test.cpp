@@ -471,6 +471,30 @@ TEST(MachineTest, HypercubeMappedOnlyWhenAskedOrEmulated) {
   EXPECT_TRUE(withMap.image.pixels == withoutMap.image.pixels);
 }
 
+// The FIFO's capacity: the one asked for, else the engine's own (512 rays on threads, the iPSC's 128 in
+// emulated time and over MPI); a run's summary and stats name the capacity it used.
+TEST(MachineTest, FifoCapacityIsTheEnginesUnlessAsked) {
+  MachineSettings machine;
+  EXPECT_EQ(fifoRaysFor(machine), node::scheduling::kThreadsFifoRays);
+  EXPECT_EQ(node::scheduling::kThreadsFifoRays, 512u);
+  machine.mpi = true;
+  EXPECT_EQ(fifoRaysFor(machine), 128u);
+  machine.mpi = false;
+  machine.emulate = builtinPlatform("ipsc1");
+  EXPECT_EQ(fifoRaysFor(machine), 128u);
+  machine.queueCapacity = 7;
+  EXPECT_EQ(fifoRaysFor(machine), 7u);
+
+  const core::Scene scene = core::makeBalls(1);
+  MachineSettings threads = machineFor({2, 2}, 1);
+  threads.queueCapacity.reset();
+  MachineReport report;
+  renderMachine(scene, settingsFor(16), threads, &report);
+  EXPECT_EQ(report.settings.queueCapacity, std::optional<std::size_t>(512));
+  EXPECT_NE(machineTable(report).find("FIFO 512 rays"), std::string::npos) << machineTable(report);
+  EXPECT_EQ(machineJson(report).at("queueCapacity").get<std::size_t>(), 512u);
+}
+
 // A ray leaving its region beyond the scene's bounds ends there: fewer messages, the same image, every ray
 // still finished once; with the paper's rays (as the emulated machine has them) none ends early.
 TEST(MachineTest, RaysLeavingTheSceneEndWhereTheyLeaveIt) {

@@ -239,6 +239,30 @@ TEST(SpscQueue, RejectsZeroCapacity) {
   EXPECT_THROW(SpscQueue<int>(0), std::invalid_argument);
 }
 
+// Queues carved from one SlotStorage (a machine's FIFOs): each takes its power of two of slots, keeps its
+// messages apart from its neighbours' across the wrap, and storage too small for one more queue says so.
+TEST(SpscQueue, QueuesSharingSlotStorageKeepTheirMessagesApart) {
+  SlotStorage<int> storage(2 * spscSlotsFor(3));
+  SpscQueue<int> a(SpscOptions{.capacity = 3}, storage);
+  SpscQueue<int> b(SpscOptions{.capacity = 3}, storage);
+  for (int round = 0; round < 5; ++round) {  // 15 messages each: around the 4 slots several times
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_TRUE(a.tryPush(100 * round + i));
+      ASSERT_TRUE(b.tryPush(-(100 * round + i)));
+    }
+    EXPECT_FALSE(a.tryPush(7));
+    EXPECT_FALSE(b.tryPush(7));
+    for (int i = 0; i < 3; ++i) {
+      int x = 0, y = 0;
+      ASSERT_TRUE(a.tryPop(x));
+      ASSERT_TRUE(b.tryPop(y));
+      EXPECT_EQ(x, 100 * round + i);
+      EXPECT_EQ(y, -(100 * round + i));
+    }
+  }
+  EXPECT_THROW(SpscQueue<int>(SpscOptions{.capacity = 1}, storage), std::length_error);
+}
+
 // Filled to the brim (occupancies 1 to 4), refused twice, drained, found empty once; by copy or in place (a
 // slot claimed and published is a push, a claim finding the queue full a refused push, a front finding it
 // empty an empty pop), the same accounting.
