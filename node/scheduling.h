@@ -42,8 +42,9 @@ inline constexpr std::size_t kSceneBoundsBoxes = 4;
 // and 128 rays made short turns. Mount 6 at 512 x 512, 10 interleaved rounds, wall: 4 x 4 0.400 -> 0.370 s
 // (image-parallel 0.270 s), 8 x 8 0.495 -> 0.450 s, context switches of a 4 x 4 run 11,000 -> 4,400; 256
 // rays: 0.385 and 0.480 s. Paired 8 rounds at 8 x 8: balls 4 0.98, jacks 4 0.99, lattice 12 0.96, tetra
-// 6 1.05 (0.10 s runs). Peak memory 1-10 MB more, as rings cycle through their slots: jacks 4 at 8 x 8 25.9
-// -> 35.5 MB (224 rings of 64 KB), image-parallel's 19.1 MB.
+// 6 0.99 (its FIFOs' slots untouched, in one block: queues::SlotStorage). Peak memory 1-10 MB more, as
+// rings cycle through their slots: jacks 4 at 8 x 8 25.9 -> 35.5 MB (224 rings of 64 KB), image-parallel's
+// 19.1 MB.
 inline constexpr std::size_t kThreadsFifoRays = 512;
 
 // Primary rays a processor's thread shoots in one step when no ray arrived: its step's bookkeeping (a scan
