@@ -1,6 +1,6 @@
 #pragma once
 // The scene the whole-render benchmarks share: the paper's balls (sphereflake) size 2, built once.
-#include "core/balls.h"
+#include "core/spd/balls.h"
 
 namespace raycube::benchmarks {
 

@@ -1,4 +1,4 @@
-// Calibration of the `cluster` platform's node speed (host/emulated_platform.cpp, kClusterNodeSpeed): how
+// Calibration of the `cluster` platform's node speed (host/machine/emulated_platform.cpp, kClusterNodeSpeed): how
 // many of the cost table's flop-equivalents per second one core of this host achieves. Time is charged in
 // simulated time from counted work (issue 12: never measured), so the one number that ties the cluster to
 // this host is measured here, once, and copied into the source by hand; no test depends on it.
@@ -14,9 +14,9 @@
 #include <benchmark/benchmark.h>
 
 #include "benchmark_scenes.h"
-#include "host/emulated_platform.h"
-#include "host/machine.h"
-#include "host/sequential_renderers.h"
+#include "host/machine/emulated_platform.h"
+#include "host/render/render_machine.h"
+#include "host/render/sequential_renderers.h"
 
 namespace raycube::host {
 namespace {

@@ -12,14 +12,14 @@
 #include <random>
 #include <vector>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/bvh.h"
 #include "core/intersect.h"
 #include "core/nff_reader.h"
 #include "core/polygon_outline.h"
-#include "core/spd_scenes.h"
+#include "core/spd/generators.h"
 #include "core/whitted.h"
-#include "host/box_tree.h"
+#include "host/prepare/box_tree.h"
 
 namespace raycube::core {
 namespace {

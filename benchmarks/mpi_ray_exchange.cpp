@@ -15,7 +15,7 @@
 
 #include "core/view.h"
 #include "node/region_map.h"
-#include "queues/mpi_interconnect.h"
+#include "queues/interconnects/mpi_interconnect.h"
 
 using namespace raycube;
 using Message = node::BasicRayMessage<double>;

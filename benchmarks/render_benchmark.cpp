@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "benchmark_scenes.h"
-#include "host/sequential_renderers.h"
+#include "host/render/sequential_renderers.h"
 
 namespace raycube::host {
 namespace {

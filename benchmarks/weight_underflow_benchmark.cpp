@@ -21,8 +21,8 @@
 #include <span>
 #include <string>
 
-#include "core/facing_mirrors.h"
-#include "host/sequential_renderers.h"
+#include "core/spd/facing_mirrors.h"
+#include "host/render/sequential_renderers.h"
 
 namespace raycube::host {
 namespace {

@@ -12,8 +12,8 @@
 namespace raycube::node {
 namespace {
 
-// Mailboxes for every object the walk can meet, the region's and the rear's: indices up to the largest.
-std::size_t mailboxesFor(const NodeSetup& setup) {
+// Test memos for every object the walk can meet, the region's and the rear's: indices up to the largest.
+std::size_t memosFor(const NodeSetup& setup) {
   std::uint32_t end = 0;
   for (const std::vector<std::uint32_t>* list : {&setup.objects, &setup.rearObjects})
     for (std::uint32_t o : *list) end = std::max(end, o + 1);
@@ -52,8 +52,8 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       overflow_(neighbours_.size()),
       faceOf_(facesTowardNeighbours(context.regions, setup_.id)),
       inbox_(scheduling::kInboxBatch),
-      mailboxStamp_(structure_ == CellStructure::Paper ? mailboxesFor(setup_) : 0, 0),
-      mailboxT_(mailboxStamp_.size(), 0.0),
+      memoStamp_(structure_ == CellStructure::Paper ? memosFor(setup_) : 0, 0),
+      memoT_(memoStamp_.size(), 0.0),
       carriesAhead_(structure_ == CellStructure::Bvh && setup_.database->inPlace != nullptr),
       termination_(setup_.id) {
   setup_.objectBoxes = {};  // the cells are cut
@@ -195,16 +195,16 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
     core::countTest(stats_.processed, scene.objects[object]);
     return core::nearestHit(scene.objects[object], ray.ray, tLimit);
   };
-  // The paper's cells list an object in every cell it crosses: its answer is kept for the ray (a mailbox);
+  // The paper's cells list an object in every cell it crosses: its answer is kept for the ray (a test memo);
   // a region's BVH offers each of its objects once.
   auto nearest = [&](std::uint32_t object) {
     if (object == ahead_.object) return ahead_.t;  // found by a region behind, beyond its part of the ray
-    if (mailboxStamp_.empty()) return test(object);
-    if (mailboxStamp_[object] != rayStamp_) {
-      mailboxStamp_[object] = rayStamp_;
-      mailboxT_[object] = test(object);
+    if (memoStamp_.empty()) return test(object);
+    if (memoStamp_[object] != rayStamp_) {
+      memoStamp_[object] = rayStamp_;
+      memoT_[object] = test(object);
     }
-    return mailboxT_[object];
+    return memoT_[object];
   };
   // How far along the ray a candidate's box may start: the interval's end, then the best hit so far.
   Real bound = core::roundedTowards<Real>(std::min(tb, tLimit), core::kInfinity);
@@ -249,20 +249,20 @@ template <class Real>
 void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
   const TracedRay& ray = m.ray;
   ++stats_.processed.of(ray.kind);
-  if (++rayStamp_ == 0) {  // stamps wrapped: forget every mailbox
-    std::fill(mailboxStamp_.begin(), mailboxStamp_.end(), 0u);
+  if (++rayStamp_ == 0) {  // stamps wrapped: forget every memo
+    std::fill(memoStamp_.begin(), memoStamp_.end(), 0u);
     rayStamp_ = 1;
   }
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
-  if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmission == 1 &&
+  if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmissionOrAheadT == 1 &&
       startsInLightSourceBox(er.o))
     return finishRay(ray, core::Hit{}, traceWhereItStarts(ray));
   const bool light = ray.kind == core::RayKind::Light;
   const double tMax = light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
-  double transmission = light ? m.transmission : 1.0;
+  double transmission = light ? m.transmissionOrAheadT : 1.0;
   ahead_ =
-      carriesAhead_ && !light && m.ahead != kNothingAhead ? core::Hit{m.transmission, m.ahead} : core::Hit{};
+      carriesAhead_ && !light && m.ahead != kNothingAhead ? core::Hit{m.transmissionOrAheadT, m.ahead} : core::Hit{};
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
     return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *regionBvh_, hit, transmission)
@@ -276,7 +276,7 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
     }
     send(Message{.ray = ray,
                  .tEnter = tExit,
-                 .transmission = light ? transmission : (ahead_.found() ? ahead_.t : 1.0),
+                 .transmissionOrAheadT = light ? transmission : (ahead_.found() ? ahead_.t : 1.0),
                  .destination = std::uint16_t(owner),
                  .ahead = light ? kNothingAhead : ahead_.object});
   };

@@ -171,18 +171,18 @@ class LogicalProcessor {
   std::vector<Message> inbox_;
   core::BasicRayOutcome<Real> outcome_;
   core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
-  // Mailboxes, with the paper's cells: an object met again in a later cell of the same ray is not tested
+  // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again in a later cell of the same ray is not tested
   // again. The cached t is the object's nearest hit over the whole ray, the very number the reference
   // renderer computes. Only up to the largest index the walk can meet (a processor reading the whole scene
   // in place would otherwise hold 12 bytes per scene object: sombrero 3's 16 empty sky regions held 6 MB),
   // and none with a BVH, which needs none.
-  std::vector<std::uint32_t> mailboxStamp_;
-  std::vector<double> mailboxT_;
+  std::vector<std::uint32_t> memoStamp_;
+  std::vector<double> memoT_;
   std::uint32_t rayStamp_ = 0;
   // The ray being evaluated (closest-hit rays, in BVH regions): the nearest hit found beyond the parts of
   // it visited so far, on an object a region ahead may meet again (BasicRayMessage::ahead). Only where the
   // processors read the host's scene in place, whose indices are the same in every region (a database's
-  // copy numbers its objects its own way); the paper's cells keep the paper's per-region mailboxes only,
+  // copy numbers its objects its own way); the paper's cells keep the paper's per-region test memos only,
   // so the emulated machine's counts stay as fitted.
   core::Hit ahead_;
   const bool carriesAhead_;

@@ -25,7 +25,7 @@ enum class WalkResult : std::uint8_t { Stopped, Finished, Exited };
 // How a region organises its objects. Paper: the cells of 3.3. Bvh: one cell spanning the whole region (its
 // pyramid still bounds the ray's interval), whose objects a BVH visits: the paper's cells suit a few
 // objects, their depth cuts explode on thousands, a BVH's cost grows about logarithmically. Auto: a BVH in
-// every region on real cores; the host gives the emulated machine the paper's cells (host/machine.h).
+// every region on real cores; the host gives the emulated machine the paper's cells (host/machine/machine_settings.h).
 enum class CellStructure : std::uint8_t { Auto, Paper, Bvh };
 
 // Auto on real cores. Until a region of one cell walked in one pass (RegionCells::walkOneCell), the paper's

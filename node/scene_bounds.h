@@ -2,7 +2,7 @@
 // Where the scene lies (MachineContext::sceneBounds): a few world boxes holding every object. A ray that
 // cannot meet them again has nothing left to hit, wherever it goes: the processor it is in ends it, instead
 // of passing it through empty regions to the screen's edge; the host's load estimate ends its sub-sampled
-// twin at the same place (host/load_estimate.h).
+// twin at the same place (host/prepare/load_estimate.h).
 #include <algorithm>
 #include <optional>
 #include <vector>

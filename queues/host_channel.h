@@ -14,6 +14,10 @@
 
 namespace raycube::queues {
 
+// Contributions an engine gathers before shipping them across an address space to the host at once (a pipe
+// to the parent process, an MPI message): large enough that a block costs little per contribution.
+inline constexpr std::size_t kContributionsPerShipment = 4096;
+
 // Pixel contributions from every node to the host. One SPSC queue of blocks per node (rather than one
 // MPSC queue) keeps the nodes from contending with each other; the host scans them all.
 // As in Priol & Bouatouch, a node fills a block of contributions and ships it when full or when idle.

@@ -2,8 +2,8 @@
 // keep the image independent of who traces which ray.
 #include <gtest/gtest.h>
 
-#include "core/balls.h"
-#include "host/sequential_renderers.h"
+#include "core/spd/balls.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {

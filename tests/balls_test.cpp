@@ -1,4 +1,4 @@
-#include "core/balls.h"
+#include "core/spd/balls.h"
 
 #include <gtest/gtest.h>
 

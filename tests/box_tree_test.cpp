@@ -1,7 +1,7 @@
-// The host's pruning index (host/box_tree.h) finds exactly what testing every box finds, in ascending order,
+// The host's pruning index (host/prepare/box_tree.h) finds exactly what testing every box finds, in ascending order,
 // with or without taking whole the subtrees that lie inside the query (its shape a BVH's); the scene's cover
 // holds every box.
-#include "host/box_tree.h"
+#include "host/prepare/box_tree.h"
 
 #include <gtest/gtest.h>
 

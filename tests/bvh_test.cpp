@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "core/brute_force.h"
-#include "core/spd_scenes.h"
+#include "core/spd/generators.h"
 
 namespace raycube::core {
 namespace {

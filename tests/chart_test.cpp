@@ -1,6 +1,6 @@
 // Charts: every chart carries its words (title, axis labels with units, legend names, caption) as text in
 // the SVG; the path's extension picks the format; ticks land on round values.
-#include "host/chart.h"
+#include "host/chart/chart.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

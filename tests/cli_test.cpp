@@ -16,12 +16,12 @@
 #include <sstream>
 #include <string>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "core/nff_writer.h"
-#include "core/spd_scenes.h"
-#include "host/sequential_renderers.h"
+#include "core/spd/generators.h"
+#include "host/render/sequential_renderers.h"
 #include "test_support.h"
 
 namespace raycube::host {
@@ -379,7 +379,7 @@ TEST_F(Cli, TradeoffWritesPlotAndReport) {
   EXPECT_EQ(redrawn.numbers, original.numbers);
 }
 
-// host/engines.h: SimGrid and Open MPI are loaded only for the runs that use them, and their absence is
+// host/engines/engine_module.h: SimGrid and Open MPI are loaded only for the runs that use them, and their absence is
 // said in one line naming where the module was looked for.
 TEST_F(Cli, EnginesModuleIsLoadedOnlyWhenARunNeedsIt) {
   const std::string missing = "RAYCUBE_ENGINES=" + quoted((dir_ / "nowhere" / "raycube_engines.so").string()) + " ";

@@ -1,6 +1,6 @@
 // `raycube plot`: a CSV table becomes a line chart, one series per column after the first, the first
 // column's heading naming the x axis; empty fields are missing points; a bad field is named by file:line.
-#include "host/csv_chart.h"
+#include "host/chart/csv_chart.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "host/hypercube_mapping.h"
+#include "host/prepare/hypercube_mapping.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Priol & Bouatouch 3.7.2: the objects a processor's light rays may meet, found by the host (light cones,
 // figure 12; light pyramids, figure 13). Conservative: every object a light ray from the sources to the
 // light meets is in the volume; and the volume prunes: objects well away from every such ray are not.
-#include "host/light_volume.h"
+#include "host/prepare/light_volume.h"
 
 #include <gtest/gtest.h>
 

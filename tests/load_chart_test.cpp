@@ -1,4 +1,4 @@
-#include "host/load_chart.h"
+#include "host/chart/load_chart.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

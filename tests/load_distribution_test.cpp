@@ -4,14 +4,14 @@
 
 #include <random>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/intersect.h"
 #include "core/whitted.h"
-#include "host/bsp_partition.h"
-#include "host/load_estimate.h"
-#include "host/machine_report.h"
-#include "host/screen_partition.h"
-#include "host/sequential_renderers.h"
+#include "host/prepare/bsp_partition.h"
+#include "host/prepare/load_estimate.h"
+#include "host/report/machine_stats.h"
+#include "host/prepare/screen_partition.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 #include "node/region_map.h"
 

@@ -9,9 +9,9 @@
 #include <map>
 #include <optional>
 
-#include "core/balls.h"
-#include "host/framebuffer.h"
-#include "host/sequential_renderers.h"
+#include "core/spd/balls.h"
+#include "host/render/framebuffer.h"
+#include "host/render/sequential_renderers.h"
 #include "node/scheduling.h"
 
 namespace raycube::node {

@@ -1,8 +1,8 @@
-// The message-passing machine (host/machine.h) renders exactly what the one-thread reference renders, bit
+// The message-passing machine (host/machine/machine_settings.h) renders exactly what the one-thread reference renders, bit
 // for bit, whatever the processor grid and FIFO capacity: every ray is spawned once and finished once,
 // every contribution reaches the host, eye rays never leave their processor (3.1), and the space behind
 // the eye plane, which no pyramid covers, is traced too.
-#include "host/machine.h"
+#include "host/render/render_machine.h"
 
 #include <gtest/gtest.h>
 
@@ -14,12 +14,12 @@
 #include <variant>
 #include <vector>
 
-#include "core/balls.h"
-#include "host/machine_report.h"
+#include "core/spd/balls.h"
+#include "host/report/machine_stats.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "core/view.h"
-#include "host/sequential_renderers.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 #include "node/eye_box.h"
 

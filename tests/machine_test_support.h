@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/image.h"
-#include "host/machine.h"
+#include "host/render/render_machine.h"
 #include "test_support.h"
 
 namespace raycube::host::testing_support {

@@ -1,13 +1,13 @@
-// What travels between the host and a rank (host/machine_wire.h) comes back exactly as it left: the
+// What travels between the host and a rank (host/engines/machine_wire.h) comes back exactly as it left: the
 // context, every field of a setup with its region database (every kind of shape), and the reports; a
 // message cut short is an error, never a read past its end.
-#include "host/machine_wire.h"
+#include "host/engines/machine_wire.h"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "node/region_database.h"
 
 namespace raycube::host {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/nff_reader.h"
 #include "scene_equality.h"
 #include "test_support.h"

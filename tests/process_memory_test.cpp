@@ -1,6 +1,6 @@
-// The program's heap (host/process_memory.h): on huge pages where the kernel offers them, so that a large
+// The program's heap (host/util/process_memory.h): on huge pages where the kernel offers them, so that a large
 // block faults in a few times rather than once per 4 KB page.
-#include "host/process_memory.h"
+#include "host/util/process_memory.h"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>

@@ -1,4 +1,4 @@
-#include "host/processor_thread.h"
+#include "host/engines/processor_thread.h"
 
 #include <gtest/gtest.h>
 #include <pthread.h>

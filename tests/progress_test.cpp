@@ -1,7 +1,7 @@
 // Progress that tells the truth: named phases, a fraction of the phase's estimated work (never 100% before
 // the end, never backwards), one progress line per process that renderers join, a ray estimate close to the
 // real count, and the machine's phases and work (threads and simulated time).
-#include "host/progress.h"
+#include "host/util/progress.h"
 
 #include <gtest/gtest.h>
 
@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/view.h"
 #include "core/whitted.h"
-#include "host/emulated_platform.h"
-#include "host/load_estimate.h"
-#include "host/machine_progress.h"
-#include "host/sequential_renderers.h"
+#include "host/machine/emulated_platform.h"
+#include "host/prepare/load_estimate.h"
+#include "host/render/machine_progress.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {

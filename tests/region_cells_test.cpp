@@ -8,7 +8,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/brute_force.h"
 #include "node/region_map.h"
 

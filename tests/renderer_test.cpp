@@ -1,5 +1,5 @@
-// The two yardsticks (host/sequential_renderers.h) agree bit for bit, on every shipped scene, whatever the
-// thread count and run after run: the promise the fixed-point frame buffer makes (host/framebuffer.h).
+// The two yardsticks (host/render/sequential_renderers.h) agree bit for bit, on every shipped scene, whatever the
+// thread count and run after run: the promise the fixed-point frame buffer makes (host/render/framebuffer.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
-#include "host/sequential_renderers.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {

@@ -11,12 +11,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "host/framebuffer.h"
+#include "host/render/framebuffer.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "core/precision.h"
-#include "host/machine.h"
-#include "host/sequential_renderers.h"
+#include "host/render/render_machine.h"
+#include "host/render/sequential_renderers.h"
 
 namespace raycube::host {
 namespace {

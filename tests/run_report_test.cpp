@@ -1,6 +1,6 @@
 // The run report (--report): one HTML file that refers to nothing outside itself, holds what it was given
 // (sections added later included), and renders in a real browser.
-#include "host/run_report.h"
+#include "host/report/run_report.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,11 +13,11 @@
 #include <sstream>
 #include <string>
 
-#include "core/balls.h"
-#include "host/load_chart.h"
-#include "host/machine.h"
-#include "host/machine_report.h"
-#include "host/stats_report.h"
+#include "core/spd/balls.h"
+#include "host/chart/load_chart.h"
+#include "host/render/render_machine.h"
+#include "host/report/machine_stats.h"
+#include "host/report/stats_report.h"
 
 namespace raycube::host {
 namespace {

@@ -14,10 +14,10 @@
 #include <variant>
 #include <vector>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
-#include "host/sequential_renderers.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {

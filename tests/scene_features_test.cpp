@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/nff_reader.h"
 #include "core/whitted.h"
 #include "test_support.h"

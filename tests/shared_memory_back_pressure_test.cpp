@@ -1,4 +1,4 @@
-// Machine-wide back-pressure on the shared-memory interconnect (queues/shared_memory_interconnect.h): the
+// Machine-wide back-pressure on the shared-memory interconnect (queues/interconnects/shared_memory_interconnect.h): the
 // processors' reports of waiting rays add up; primaries are held from the limit until fewer than the release
 // wait, on every processor at once; and letting go wakes a processor asleep for it.
 #include <gtest/gtest.h>
@@ -7,10 +7,10 @@
 #include <future>
 #include <thread>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/view.h"
 #include "node/scheduling.h"
-#include "queues/shared_memory_interconnect.h"
+#include "queues/interconnects/shared_memory_interconnect.h"
 
 namespace raycube::queues {
 namespace {

@@ -1,4 +1,4 @@
-// Waking on the shared-memory interconnect (queues/shared_memory_interconnect.h): a processor asleep for
+// Waking on the shared-memory interconnect (queues/interconnects/shared_memory_interconnect.h): a processor asleep for
 // rays is woken once per step of the neighbour that sent them (ringNeighbours), not by every push; no
 // wake-up may be lost, or two processors waiting for each other's rays would sleep for ever.
 #include <gtest/gtest.h>
@@ -8,9 +8,9 @@
 #include <span>
 #include <thread>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/view.h"
-#include "queues/shared_memory_interconnect.h"
+#include "queues/interconnects/shared_memory_interconnect.h"
 
 namespace raycube::queues {
 namespace {

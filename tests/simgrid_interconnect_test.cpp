@@ -1,8 +1,8 @@
-// The SimGrid interconnect (queues/simgrid_interconnect.h) on a platform small enough to work out by hand:
+// The SimGrid interconnect (queues/interconnects/simgrid_interconnect.h) on a platform small enough to work out by hand:
 // a ray message crossing k hypercube hops store and forward arrives after k link transfers plus the k - 1
 // relays' CPU (the iPSC/1 routed in node software), and a full FIFO blocks its sender for exactly the time
 // its receiver takes to take the ray in. SimGrid allows one simulation per process: each runs in a child.
-#include "queues/simgrid_interconnect.h"
+#include "queues/interconnects/simgrid_interconnect.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/view.h"
 
 namespace raycube::queues {
@@ -66,7 +66,7 @@ struct Cube {
     const std::uint32_t nodes = 1u << dimension;
     for (std::uint32_t n = 0; n < nodes; ++n)
       hosts.push_back(zone->create_host("node-" + std::to_string(n), kNodeSpeed));
-    manager = zone->create_host("manager", kNodeSpeed);
+    manager = zone->create_host(queues::kCubeManagerHost, kNodeSpeed);
     auto route = [&](s4u::Host* a, s4u::Host* b, const std::string& name) {
       s4u::Link* link = zone->create_link(name, kBandwidth)->set_latency(kLatency);
       zone->add_route(a->get_netpoint(), b->get_netpoint(), nullptr, nullptr, {s4u::LinkInRoute(link)}, false);

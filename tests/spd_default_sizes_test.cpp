@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/nff_reader.h"
-#include "host/sequential_renderers.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "core/bvh.h"
-#include "core/spd_scenes.h"
+#include "core/spd/generators.h"
 #include "core/view.h"
 #include "core/whitted.h"
-#include "host/sequential_renderers.h"
+#include "host/render/sequential_renderers.h"
 #include "test_support.h"
 
 namespace raycube::host {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/balls.h"
-#include "core/facing_mirrors.h"
+#include "core/spd/balls.h"
+#include "core/spd/facing_mirrors.h"
 #include "core/nff_reader.h"
 #include "stability_test_support.h"
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/view.h"
 #include "stability_test_support.h"
 

@@ -3,7 +3,7 @@
 // agree with brute force.
 #include <gtest/gtest.h>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "stability_test_support.h"
 
 namespace raycube::host {

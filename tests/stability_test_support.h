@@ -11,8 +11,8 @@
 
 #include "core/image.h"
 #include "core/scene.h"
-#include "host/machine.h"
-#include "host/sequential_renderers.h"
+#include "host/render/render_machine.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host::testing_support {

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 #include "core/image.h"
-#include "host/machine.h"
-#include "host/sequential_renderers.h"
+#include "host/render/render_machine.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {

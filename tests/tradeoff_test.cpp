@@ -1,5 +1,5 @@
 // `raycube tradeoff`: each knob's sweep is measured against a converged reference.
-#include "host/tradeoff.h"
+#include "host/studies/tradeoff.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <map>
 
-#include "core/balls.h"
+#include "core/spd/balls.h"
 
 namespace raycube::host {
 namespace {

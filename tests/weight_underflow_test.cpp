@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "core/facing_mirrors.h"
-#include "host/framebuffer.h"
-#include "host/machine.h"
-#include "host/sequential_renderers.h"
+#include "core/spd/facing_mirrors.h"
+#include "host/render/framebuffer.h"
+#include "host/render/render_machine.h"
+#include "host/render/sequential_renderers.h"
 
 namespace raycube::host {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "core/image.h"
 #include "core/nff_reader.h"
-#include "host/machine.h"
-#include "host/sequential_renderers.h"
+#include "host/render/render_machine.h"
+#include "host/render/sequential_renderers.h"
 
 namespace raycube::fuzz {
 namespace {

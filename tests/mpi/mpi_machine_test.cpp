@@ -1,4 +1,4 @@
-// The machine over MPI (host/mpi_machine.h) renders exactly what the reference renders, bit for bit, on
+// The machine over MPI (host/engines/mpi/mpi_machine.h) renders exactly what the reference renders, bit for bit, on
 // 2, 3 or 5 ranks (ctest runs this program under mpiexec at each): every ray spawned finishes once, every
 // contribution reaches rank 0, no eye ray leaves its processor, termination is proved by the token across
 // ranks, and a processor never has more rays in flight towards a neighbour than the FIFO's capacity.
@@ -8,9 +8,9 @@
 #include <map>
 #include <string>
 
-#include "core/balls.h"
-#include "host/mpi_session.h"
-#include "host/sequential_renderers.h"
+#include "core/spd/balls.h"
+#include "host/engines/mpi/mpi_session.h"
+#include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {
@@ -68,8 +68,8 @@ TEST(MpiMachineTest, MatchesReferenceOnEveryGridAndCapacity) {
     expectMachineMatchesReference(references.at(c.precision), result, report, label);
 
     // Every rank reported; the processors were shared out, idle ranks (more ranks than processors) too.
-    ASSERT_TRUE(report.distributed) << label;
-    const DistributedRun& run = *report.distributed;
+    ASSERT_TRUE(report.mpi) << label;
+    const MpiRun& run = *report.mpi;
     ASSERT_EQ(int(run.ranks.size()), worldSize()) << label;
     int processors = 0;
     std::uint64_t raysOverMpi = 0;

@@ -1,0 +1,161 @@
+// Ranks 1..N-1 of the MPI machine: each render, build this rank's processors from the setups the host
+// sent, run them on threads over the rank's interconnect, and send back their reports. The calling thread
+// is the rank's communication task: the only one that calls MPI.
+#include <atomic>
+#include <chrono>
+#include <latch>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "host/engines/machine_wire.h"
+#include "host/engines/mpi/mpi_machine.h"
+#include "host/engines/node_thread.h"
+#include "host/engines/processor_thread.h"
+#include "queues/interconnects/jitter_transport.h"
+#include "queues/interconnects/mpi_interconnect.h"
+
+namespace raycube::host {
+
+using queues::Packet;
+
+namespace {
+
+// The first failure of a processor's thread, for the communication task to report.
+class Failure {
+ public:
+  void record(const std::string& cause) {
+    std::lock_guard lock(mutex_);
+    if (!failed_.exchange(true)) cause_ = cause;
+  }
+  bool failed() const { return failed_.load(); }
+  std::string cause() const {
+    std::lock_guard lock(mutex_);
+    return cause_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::atomic<bool> failed_{false};
+  std::string cause_;
+};
+
+template <class Body>
+void guarded(Failure& failure, int id, Body&& body) {
+  try {
+    body();
+  } catch (const std::exception& e) {
+    failure.record("processor " + std::to_string(id) + ": " + e.what());
+  }
+}
+
+template <class Real>
+void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
+  const queues::MpiTraffic before = link.traffic();
+  queues::MpiInterconnect<Real> net(job.context.regions,
+                                    queues::MpiWiring{job.settings.rankOf, job.settings.queueCapacity,
+                                                      job.settings.rayBatch},
+                                    link);
+  const std::size_t local = job.setups.size();
+  std::vector<std::unique_ptr<queues::JitterTransport<Real>>> jitters;
+  std::vector<node::BasicTransport<Real>*> transports;
+  std::vector<int> ids;
+  std::uint64_t objectsHeld = 0;
+  for (const node::NodeSetup& s : job.setups) {
+    ids.push_back(s.id);
+    objectsHeld += s.database->size();
+    transports.push_back(&net.endpoint(s.id));
+    if (job.settings.jitterSeed > 0) {
+      jitters.push_back(std::make_unique<queues::JitterTransport<Real>>(
+          *transports.back(), job.settings.jitterSeed * 7919u + unsigned(s.id)));
+      transports.back() = jitters.back().get();
+    }
+  }
+  std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> nodes(local);
+  std::vector<ProcessorReport> reports(local);
+  Failure failure;
+  std::atomic<std::size_t> running(local);
+  std::latch subdivided{std::ptrdiff_t(local)};
+  std::latch synthesis(1);
+  ProcessorThreads threads;
+  for (std::size_t k = 0; k < local; ++k)
+    threads.start([&, k] {
+      const int id = ids[k];
+      guarded(failure, id, [&] {
+        nodes[k] = std::make_unique<node::LogicalProcessor<Real>>(job.context, std::move(job.setups[k]),
+                                                                   *transports[k]);
+      });
+      subdivided.count_down();
+      synthesis.wait();
+      if (nodes[k]) guarded(failure, id, [&] { driveNodeThread(*nodes[k], net, id, reports[k]); });
+      running.fetch_sub(1);
+    });
+  try {
+    subdivided.wait();
+    if (failure.failed()) throw std::runtime_error(failure.cause());
+    link.post(0, Packet::Ready, {});
+    typename queues::MpiInterconnect<Real>::ServeHooks hooks;
+    hooks.stopped = [&] { return running.load() == 0; };
+    hooks.progress = [&] {
+      std::vector<queues::ProcessorProgress> progress;
+      for (std::size_t k = 0; k < local; ++k)
+        if (nodes[k]) progress.push_back({std::uint32_t(ids[k]), nodes[k]->segmentsEvaluated()});
+      return progress;
+    };
+    hooks.other = [&](int from, Packet kind, std::span<const char>) {
+      if (from == 0 && kind == Packet::Start) return synthesis.count_down();
+      if (from == 0 && kind == Packet::Quit) throw std::runtime_error("the host (rank 0) stopped during the render");
+    };
+    hooks.check = [&] {
+      if (failure.failed()) throw std::runtime_error(failure.cause());
+    };
+    net.serve(hooks);
+  } catch (const std::exception& e) {
+    link.abort(e.what());  // threads may be waiting for rays that will never come: end the job here
+  }
+  threads.joinAll();
+
+  RankResults results;
+  for (std::size_t k = 0; k < local; ++k) {
+    reports[k].node = nodes[k]->stats();
+    for (int f = 0; f < node::kFaces; ++f)
+      reports[k].outgoing[f] = net.outgoingStats(ids[k], node::Face(f));
+    results.processors.push_back(reports[k]);
+  }
+  const queues::MpiTraffic& after = link.traffic();
+  RankReport& r = results.rank;
+  r.rank = link.rank();
+  r.processors = int(local);
+  r.objects = objectsHeld;
+  r.jobBytes = jobBytes;
+  r.peakRssBytes = peakResidentBytes();
+  r.messagesSent = after.messagesSent - before.messagesSent + 1;  // with the results
+  r.bytesSent = after.bytesSent - before.bytesSent;
+  r.messagesReceived = after.messagesReceived - before.messagesReceived + 1;  // with the job
+  r.bytesReceived = after.bytesReceived - before.bytesReceived + jobBytes;
+  r.rayMessages = net.rayTraffic().rayMessages;
+  r.raysSent = net.rayTraffic().raysSent;
+  link.post(0, Packet::Results, encodeResults(results));
+  link.flushSends();
+}
+
+}  // namespace
+
+int serveMachineJobs(queues::MpiLink& link) {
+  for (;;) {
+    std::vector<char> job;
+    std::optional<int> quit;
+    const queues::MpiLink::OnPacket handle = [&](int from, Packet kind, std::span<const char> bytes) {
+      if (from == 0 && kind == Packet::Job) job.assign(bytes.begin(), bytes.end());
+      if (from == 0 && kind == Packet::Quit) quit = queues::packetValue<int>(bytes);
+    };
+    while (job.empty() && !quit)
+      if (link.poll(handle, 1) == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    if (quit) return *quit;
+    MachineJob decoded = decodeJob(job);
+    core::withPrecision(decoded.settings.precision,
+                        [&]<class Real>() { runJob<Real>(std::move(decoded), link, job.size()); });
+  }
+}
+
+}  // namespace raycube::host

@@ -1,0 +1,22 @@
+#pragma once
+// The machine on threads (the emulator's default engine): one thread per logical processor on the
+// shared-memory interconnect (queues/interconnects/shared_memory_interconnect.h); the calling thread is the host.
+#include "host/machine/machine_engine.h"
+
+namespace raycube::host {
+
+template <class Real>
+class ThreadedMachine final : public MachineEngine<Real> {
+ public:
+  ThreadedMachine(std::size_t queueCapacity, unsigned jitterSeed, std::size_t backlogLimit)
+      : queueCapacity_(queueCapacity), jitterSeed_(jitterSeed), backlogLimit_(backlogLimit) {}
+  MachineRun run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
+                 const EngineHooks& hooks) override;
+
+ private:
+  std::size_t queueCapacity_;
+  unsigned jitterSeed_;  // > 0: random delays around every transport operation (tests)
+  std::size_t backlogLimit_;  // waiting rays that hold primaries back (MachineSettings::backlogLimit)
+};
+
+}  // namespace raycube::host

@@ -1,0 +1,173 @@
+// The machine in simulated time on SimGrid (host/engines/simgrid/emulated_machine.h): the same image as every mode, the
+// same simulated time on every run, and times that can be worked out by hand.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/spd/balls.h"
+#include "host/studies/scaling.h"
+#include "host/render/sequential_renderers.h"
+#include "host/report/emulated_report.h"
+#include "machine_test_support.h"
+
+namespace raycube::host {
+namespace {
+
+using testing_support::renderAndCompare;
+using testing_support::renderMachineWatched;
+using testing_support::settingsFor;
+
+MachineSettings emulated(int rows, int columns, const std::string& platform = "ipsc1") {
+  MachineSettings m;
+  m.rows = rows;
+  m.columns = columns;
+  m.emulate = builtinPlatform(platform);
+  return m;
+}
+
+TEST(EmulatedMachine, ImageIsTheReferenceAtAnyPartitionCapacityAndLightMode) {
+  const core::Scene scene = core::makeBalls(2);
+  const RenderSettings settings = settingsFor(32);
+  const RenderResult reference = renderReference(scene, settings);
+  for (const auto& [rows, columns, capacity, lights, balance] :
+       std::vector<std::tuple<int, int, std::size_t, node::LightRayMode, Balance>>{
+           {1, 1, 128, node::LightRayMode::Messages, Balance::Uniform},
+           {2, 2, 1, node::LightRayMode::Messages, Balance::Bsp},
+           {3, 5, 1, node::LightRayMode::Pyramid, Balance::Uniform},
+           {4, 4, 128, node::LightRayMode::Messages, Balance::Bsp},
+           {2, 3, 2, node::LightRayMode::Cone, Balance::Bsp}}) {
+    MachineSettings m = emulated(rows, columns);
+    m.queueCapacity = capacity;
+    m.lightRays = lights;
+    m.balance = balance;
+    renderAndCompare(scene, reference, settings, m,
+                     fmt::format("ipsc1 {}x{} capacity {} lights {}", rows, columns, capacity, int(lights)));
+  }
+}
+
+TEST(EmulatedMachine, TheSameRunGivesTheSameSimulatedTimeToTheLastDigit) {
+  const core::Scene scene = core::makeBalls(2);
+  MachineSettings m = emulated(4, 4);
+  m.lightRays = node::LightRayMode::Messages;
+  m.queueCapacity = 2;  // saturation: the most timing-sensitive case
+  std::vector<MachineReport> reports(2);
+  for (MachineReport& r : reports) renderMachineWatched(scene, settingsFor(48), m, r, "determinism");
+  ASSERT_TRUE(reports[0].emulated && reports[1].emulated);
+  EXPECT_EQ(reports[0].emulated->makespan, reports[1].emulated->makespan);
+  EXPECT_EQ(reports[0].emulated->rayMessages, reports[1].emulated->rayMessages);
+  for (std::size_t p = 0; p < reports[0].processors.size(); ++p) {
+    EXPECT_EQ(reports[0].processors[p].computeSeconds, reports[1].processors[p].computeSeconds) << p;
+    EXPECT_EQ(reports[0].processors[p].blockedSeconds, reports[1].processors[p].blockedSeconds) << p;
+    EXPECT_EQ(reports[0].processors[p].node.processed.intersectionTests,
+              reports[1].processors[p].node.processed.intersectionTests) << p;
+  }
+}
+
+// One processor whose only cost is one second per ray segment, and a host link that costs nothing: the
+// simulated time is the number of segments it processed, to the last bit.
+TEST(EmulatedMachine, OneProcessorTakesExactlyItsChargedWork) {
+  const core::Scene scene = core::makeBalls(1);
+  MachineSettings m = emulated(1, 1);
+  m.emulate->costs = CostTable{};
+  CostTable& c = m.emulate->costs;
+  c = CostTable{0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
+  m.emulate->nodeSpeed = 1;
+  m.emulate->hostLinkLatency = 0;
+  m.emulate->hostLinkBandwidth = 1e30;
+  MachineReport report;
+  renderMachineWatched(scene, settingsFor(16), m, report, "hand");
+  const double segments = double(report.processors[0].node.processed.totalRays());
+  EXPECT_EQ(report.processors[0].computeSeconds, segments);
+  EXPECT_NEAR(report.emulated->makespan, segments, 1e-9 * segments);
+  EXPECT_EQ(report.processors[0].blockedSeconds, 0);
+}
+
+// Doubling the node speed halves the compute time of the same work; links do not change.
+TEST(EmulatedMachine, ComputeTimeScalesWithTheNodeSpeed) {
+  const core::Scene scene = core::makeBalls(1);
+  MachineSettings slow = emulated(1, 2), fast = emulated(1, 2);
+  fast.emulate->nodeSpeed = 2 * slow.emulate->nodeSpeed;
+  MachineReport a, b;
+  renderMachineWatched(scene, settingsFor(16), slow, a, "slow");
+  renderMachineWatched(scene, settingsFor(16), fast, b, "fast");
+  for (std::size_t p = 0; p < a.processors.size(); ++p)
+    EXPECT_DOUBLE_EQ(a.processors[p].computeSeconds, 2 * b.processors[p].computeSeconds) << p;
+}
+
+// Store and forward on the iPSC/1: on a BSP whose regions map onto non-adjacent hypercube nodes, messages
+// are relayed, which costs the relays CPU; every relayed message crossed one more link.
+TEST(EmulatedMachine, StoreAndForwardRelaysCostTheRelaysCpu) {
+  const core::Scene scene = core::makeBalls(2);
+  MachineSettings m = emulated(1, 24);  // 24 regions on a 5-cube: the mapping leaves some neighbours 2+ hops apart
+  m.lightRays = node::LightRayMode::Messages;
+  MachineReport report;
+  renderMachineWatched(scene, settingsFor(48), m, report, "relays");
+  ASSERT_GT(report.dilationMax, 1) << "this partition no longer needs relays; pick another";
+  double forwarding = 0;
+  std::uint64_t sent = 0;
+  for (const ProcessorReport& p : report.processors) {
+    forwarding += p.forwardSeconds;
+    for (auto s : p.node.sent) sent += s;
+  }
+  EXPECT_GT(forwarding, 0);
+  EXPECT_GT(report.emulated->rayMessages, sent) << "relayed messages cross more links than were sent";
+}
+
+TEST(EmulatedMachine, CostFilesAreCheckedWithFileAndLine) {
+  const auto path = std::filesystem::temp_directory_path() / "raycube_costs_test.txt";
+  std::ofstream(path) << "# iPSC/1, slower spheres\nsphereTest 40\nrouting direct\nnodeSpeed -1\n";
+  EmulatedPlatform p = builtinPlatform("ipsc1");
+  try {
+    applyCostFile(path, p);
+    FAIL() << "a negative speed was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string() + ":4"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(p.costs.sphereTest, 40);
+  EXPECT_EQ(p.routing, Routing::Direct);
+  EXPECT_THROW(builtinPlatform("cm5"), std::invalid_argument);
+  std::filesystem::remove(path);
+}
+
+// The scaling plot names itself, its axes and its curves in the SVG's text; the paper's curve only where
+// the paper's numbers apply (its configuration, on the iPSC/1).
+TEST(Scaling, PlotCarriesItsWordsAndThePapersCurveOnlyForTable2) {
+  auto hasText = [](const std::string& svg, const std::string& words) {
+    return svg.find(">" + markupEscaped(words) + "</text>") != std::string::npos;
+  };
+  const core::Scene scene = core::makeBalls(2);
+  RenderSettings settings = settingsFor(128);
+  settings.shading.maxDepth = 5;
+  std::vector<ScalingPoint> points(3);
+  for (auto [p, processors, seconds] : {std::tuple{0, 1, 12000.0}, {1, 4, 4000.0}, {2, 16, 1500.0}}) {
+    points[p].processors = processors;
+    points[p].makespan = seconds;
+    points[p].speedup = 12000 / seconds;
+    points[p].efficiency = points[p].speedup / processors;
+  }
+  const LineChart plot = scalingPlot(points, scene, settings, "ipsc1");
+  const std::string svg = chartSvg(plot);
+  for (const std::string& words : {plot.title, plot.caption, plot.x.label, plot.y.label,
+                                   std::string("raycube (simulated)"), std::string("ideal (efficiency 1)"),
+                                   std::string("Priol & Bouatouch, table 2 (iPSC/1)"), std::string("0.50")})
+    EXPECT_TRUE(hasText(svg, words)) << words;
+  EXPECT_NE(plot.title.find("ipsc1"), std::string::npos);
+  EXPECT_NE(plot.x.label.find("processors"), std::string::npos);
+  ASSERT_EQ(plot.series.size(), 3u);
+  EXPECT_DOUBLE_EQ(plot.series[1].y[1], 13941.0 / 4621) << "table 2's speed-up at 4 processors";
+  EXPECT_EQ(scalingPlot(points, scene, settings, "cluster").series.size(), 2u) << "the paper ran no cluster";
+  EXPECT_EQ(scalingPlot(points, scene, settingsFor(64), "ipsc1").series.size(), 2u)
+      << "not table 2's configuration";
+}
+
+TEST(Scaling, NearSquareGrids) {
+  EXPECT_EQ(nearSquareGrid(1), std::make_pair(1, 1));
+  EXPECT_EQ(nearSquareGrid(32), std::make_pair(4, 8));
+  EXPECT_EQ(nearSquareGrid(64), std::make_pair(8, 8));
+  EXPECT_EQ(nearSquareGrid(7), std::make_pair(1, 7));
+}
+
+}  // namespace
+}  // namespace raycube::host
