@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The machine over MPI against the threaded machine on this host (issue 14). Not a test: figures for the
-# README. On a 2-core host the ranks oversubscribe the cores, and that costs something: it is reported.
+# The machine over MPI against the threaded machine on this host (issue 14). Not a test: figures for
+# benchmarks/results/mpi.md. On a 2-core host the ranks oversubscribe the cores, and that costs something: it is reported.
 #   1. ray messages per second between two ranks, batched and unbatched, beside the shared-memory FIFO
 #   2. balls size 2, 512x512, 16 processors (4x4): threads, and MPI on N = 2, 3, 5 ranks (median of RUNS)
 #   3. MPI messages and bytes per rank (the per-rank table of the last run at each N)

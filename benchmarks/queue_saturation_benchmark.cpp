@@ -38,8 +38,8 @@ struct SmallMessage {
   std::uint64_t value = 0;
 };
 
-// The messages the machine's FIFOs carry (host/shared_memory_transport.h): a ray in double (128 bytes) or
-// float (80 bytes). The sequence number rides in the ray's sample index.
+// The messages the machine's FIFOs carry (queues/interconnects/shared_memory_interconnect.h): a ray in
+// double (128 bytes) or float (80 bytes). The sequence number rides in the ray's sample index.
 using DoubleRay = node::BasicRayMessage<double>;
 using FloatRay = node::BasicRayMessage<float>;
 static_assert(sizeof(DoubleRay) == 128 && sizeof(FloatRay) == 80);
@@ -65,7 +65,7 @@ std::uint64_t sequenceOf(const T& m) {
 // ---- The queues under test, behind one interface: tryPush/tryPop (polling) and push/pop (blocking).
 
 // raycube's ring with or without doorbells and accounting; the machine's FIFO has both
-// (host/shared_memory_transport.h).
+// (queues/interconnects/shared_memory_interconnect.h).
 template <class T, Accounting kAccounting, bool kBells>
 class Raycube {
  public:

@@ -68,8 +68,7 @@ BvhShape BasicBvh<Real>::shape() const {
 // What the restricting constructor keeps of the whole tree: how many of its objects each whole node holds
 // (the nodes above its objects' leaves hold some), and which object of this scene each whole-scene object of
 // those leaves is (kNotHeld if none): one lookup per object in a table as long as the whole scene, where
-// sorting the objects by whole id and searching them cost two thirds of the restriction (BM_BvhRestrict,
-// sombrero 3: 5.1 -> 1.7 ms).
+// sorting the objects by whole id and searching them cost most of the restriction (BM_BvhRestrict).
 template <class Real>
 struct BasicBvh<Real>::Restriction {
   static constexpr std::uint32_t kNotHeld = std::numeric_limits<std::uint32_t>::max();
@@ -77,8 +76,7 @@ struct BasicBvh<Real>::Restriction {
   const BvhShape& whole;
   // Per whole node, saturating at saturated = largestLeaf + 1: all the restriction asks of a count is
   // whether it is 0 or at most largestLeaf, and an object's walk up from its leaf stops at the first node
-  // already saturated (BM_BvhRestrict, sombrero 3, every other object, leaves of 1, three interleaved
-  // medians of 10: 1.68 / 1.64 / 1.12 -> 1.48 / 1.45 / 1.01 ms).
+  // already saturated, every node above it being saturated too (BM_BvhRestrict times it).
   std::vector<std::uint8_t> keptBelow;
   std::vector<std::uint32_t> localOf;   // per whole object
   std::uint32_t largestLeaf;
@@ -107,10 +105,10 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading,
       if (n == 0) break;
     }
   }
-  // The copy has at most the marked nodes: reserved, not doubled as it grows (64 processors hold 9 MB of
-  // such trees at jacks 4's 8 x 8, a quarter of it capacity never used). Not shrunk to fit: the capacity
+  // The copy has at most the marked nodes: reserved, not doubled as it grows (a doubled vector's unused
+  // capacity is a large share of 64 processors' trees). Not shrunk to fit: the capacity
   // past the last node is never written, so costs no memory, where a copy would leave the tree's pages
-  // twice in the processor's allocator (sombrero 3 at 8 x 8: +7 MB peak).
+  // twice in the processor's allocator, raising the peak.
   nodes_.reserve(marked);
   order_.reserve(objects.size());
   keep(r, 0);

@@ -92,7 +92,7 @@ bool writePngRows(std::FILE* file, int width, int height, png_bytep* rows, PngEr
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   // Rows filtered by their left neighbour alone, where libpng's default tries all five filters on every row:
-  // 10-30% faster on the SPD scenes' 512x512 renders, their files within 2% of the size.
+  // much faster on the SPD scenes' renders, for files of nearly the same size.
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   png_write_info(png, info);
@@ -212,8 +212,8 @@ void writeExr(const Image& image, const std::filesystem::path& path) {
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
-    // zlib's fastest level, its blocks compressed on every core: sombrero 3's 512x512 57 -> 25 ms (a fifth
-    // of its image-parallel run), for a file 1% larger; a noisy image's float data still takes about 55 ms.
+    // zlib's fastest level, its blocks compressed on every core: writing the EXR was a large share of a short
+    // run, and the file grows only slightly; a noisy image's float data still compresses slowly.
     header.zipCompressionLevel() = 1;
     useEveryCoreForOpenExr();
     for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));

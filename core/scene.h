@@ -63,10 +63,9 @@ struct Cone {
 class PolygonOutline;
 
 // A triangle is tested as itself (the fan of one); a polygon of more corners carries its outline, whose test
-// takes about constant time (a fan's grows with the corners, and covers a concave polygon's notches too):
-// intersection_benchmark, one ray against a regular convex polygon, fan vs outline: 4 corners 62 vs 28 ns,
-// 8: 129 vs 24 ns, 128: 1119 vs 22 ns; a triangle 43 vs 25 ns, but no faster on a scene of 8,000
-// triangles, which would hold 2.6 MB more.
+// takes about constant time (a fan's grows with the corners, and covers a concave polygon's notches too;
+// intersection_benchmark compares them). A triangle's outline is faster alone but rendered no faster on a
+// scene of triangles, which would hold more memory.
 inline constexpr std::size_t kMostFanVertices = 3;
 
 // A polygon's corners, in place for a triangle (the SPD's usual polygon: copied into a processor's database

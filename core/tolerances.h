@@ -10,7 +10,7 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Bounding boxes are padded by a fraction of their extent (plus the same fraction of their magnitude) so
 // that slab tests never lose a surface: 2^-30 (2^22 ulps) for double rays, 2^-16 (2^8 ulps) for float rays,
 // whose hits may lie that far off the exact surface (kBoxPaddingRelativeOf in core/precision.h). Padding
-// double's boxes for float would cost the image-parallel BVH 31% more intersection tests on balls2.
+// double's boxes by float's margin would make the image-parallel BVH test many more objects for nothing.
 inline constexpr double kBoxPaddingRelative = 0x1p-30;
 inline constexpr double kFloatBoxPaddingRelative = 0x1p-16;
 

@@ -15,9 +15,8 @@
 namespace raycube::node {
 
 // The database's objects scattered over the whole scene's tree (its light volumes' objects), a branch holding
-// this few of them is one leaf: jacks 4 at 8 x 8 held 7.5 MB of such trees over 55,000 copies, a node per
-// object; 2 saves 3 MB for the same tests, 4 another 2 MB for 15% more object tests on mount 6 and 45% on
-// sombrero 3, and looked slower on balls 4.
+// this few of them is one leaf: a node per object made 64 processors' trees large; 2 saves memory for the
+// same tests, more saves a little more memory for many more object tests.
 inline constexpr std::uint32_t kLargestHeldLeaf = 2;
 
 template <class Real>
@@ -59,7 +58,7 @@ struct SceneTree {
 // What answers a processor's light rays traced where they start (3.7.2): a tree over what it holds. Where it
 // reads the host's scene in place (double rays), the host's tree, passing over the objects it does not hold
 // untested: the light rays meet what a tree over the database would give them, and 64 processors restrict no
-// trees (jacks 4 at 8 x 8: 73,000 held objects, most of the processors' set-up). Otherwise the database's own
+// trees (restricting them was most of the set-up of processors holding much). Otherwise the database's own
 // tree, shared (sharedBvhOf).
 template <class Real>
 class LightRayTree {

@@ -65,9 +65,8 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   stats_.cells = cells_.cellCount();
   stats_.bvh = structure_ == CellStructure::Bvh;
   // The whole scene's shape restricted to the region's objects where the host shares it (as the database's
-  // tree), with leaves of one object as a build makes them: a tenth of a build's time (sombrero 3 at 4 x 4:
-  // preprocessing 55 -> 43 ms) for a few percent more box tests; whole-process CPU against building anew,
-  // paired 12 rounds: lattice 12 1.014, sombrero 3 0.988. Leaves of two cost lattice 12's cylinders 2.6%.
+  // tree), with leaves of one object as a build makes them: a fraction of a build's time for a few percent
+  // more box tests, about even with building anew over a whole run. Leaves of two cost more tests.
   if (stats_.bvh)
     regionBvh_ = std::make_unique<const core::BasicBvh<Real>>(core::bvhOver<Real>(
         scene_, shading_, setup_.objects, setup_.sceneShape.get(), setup_.database->wholeIdOf()));

@@ -163,7 +163,7 @@ class LogicalProcessor {
   // Rays spawned here that start in this region, still to evaluate here: not messages, so that the message
   // each becomes is built field by field where evaluate reads it. A message built so and then copied whole
   // is read in 16-byte pieces before its narrower stores have left the store buffer, and waits for them:
-  // half of deliver's time on mount 6 at 4 x 4 when the local stack held messages.
+  // a large part of deliver's time when the local stack held messages.
   std::vector<TracedRay> local_;
   const std::vector<int>& neighbours_;           // processors across this region's faces
   std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused
@@ -174,7 +174,7 @@ class LogicalProcessor {
   // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again in a later cell of the same ray is not tested
   // again. The cached t is the object's nearest hit over the whole ray, the very number the reference
   // renderer computes. Only up to the largest index the walk can meet (a processor reading the whole scene
-  // in place would otherwise hold 12 bytes per scene object: sombrero 3's 16 empty sky regions held 6 MB),
+  // in place would otherwise hold 12 bytes per scene object, even in an empty region),
   // and none with a BVH, which needs none.
   std::vector<std::uint32_t> memoStamp_;
   std::vector<double> memoT_;

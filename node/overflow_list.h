@@ -2,8 +2,8 @@
 // Rays a full neighbour FIFO refused, kept in order until it has room (the deadlock answer of
 // LogicalProcessor::send). A queue of fixed chunks: it holds what waits now, give or take a chunk, and hands
 // back each chunk as it drains. A vector with a moving head held up to four times the most rays that ever
-// waited (its front reclaimed only at half, its capacity doubled on top), and kept it to the end: mount 6
-// at 8 x 8 has 110,000 rays waiting at the processors' high waters, in lists that peak at different times.
+// waited (its front reclaimed only at half, its capacity doubled on top), and kept it to the end, though
+// the processors' lists peak at different times.
 #include <algorithm>
 #include <cstddef>
 #include <deque>

@@ -30,9 +30,7 @@ enum class CellStructure : std::uint8_t { Auto, Paper, Bvh };
 
 // Auto on real cores. Until a region of one cell walked in one pass (RegionCells::walkOneCell), the paper's
 // cells served regions of at most 8 objects; since, a BVH region costs fewer instructions there too, down
-// to the empty regions the paper's cells crossed column by column (callgrind, 8 x 8, against that
-// threshold: mount 6 -1.3%, balls 4 -1.5%, jacks 4 -1.1%, balls 2 -5.1%, balls 1 -9.2%; 4 x 4: balls 2
-// -1.6%, balls 1 -4.4%; wall, 10 interleaved rounds at 8 x 8: mount 6 -2.1%, balls 2 -3.2%).
+// to the empty regions the paper's cells crossed column by column (counted under callgrind, and timed).
 inline CellStructure chosenFor(CellStructure requested) {
   return requested == CellStructure::Auto ? CellStructure::Bvh : requested;
 }

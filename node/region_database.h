@@ -5,8 +5,8 @@
 // host sends to its node, local object i being global object globalIds[i] (local order is global order, so
 // every tie between hits, "the lower index wins", is decided exactly as in the whole scene). Processors
 // sharing the host's address space read the host's scene in place instead, by global index: the same
-// objects reached the same way (the trees over them name only the held ones), without 55,000 to 68,000
-// copies of 144 bytes at 8 x 8 on jacks 4, mount 6 and rings 7.
+// objects reached the same way (the trees over them name only the held ones), without tens of thousands
+// of copies of 144 bytes at 8 x 8.
 #include <cstdint>
 #include <span>
 #include <vector>

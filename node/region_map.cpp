@@ -95,7 +95,7 @@ int RegionMap::ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, 
   const int row =
       qStep > 0 ? a.y1 : qStep < 0 ? a.y0 - 1 : lines_.sampleIndex(1, ray.screenAt(1, t), a.y0, a.y1);
   // Across a face: one of the few neighbours, whose areas are at hand (the owner table is a megabyte at
-  // 512 x 512, and a miss in it cost 5% of mount 6's run at 8 x 8). Through a corner: the table.
+  // 512 x 512, and missing the cache in it cost a visible share of a run). Through a corner: the table.
   for (int n : neighbours_[id]) {
     const SampleRect& b = areas_[n];
     if (column >= b.x0 && column < b.x1 && row >= b.y0 && row < b.y1) return n;

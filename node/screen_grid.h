@@ -52,7 +52,7 @@ class ScreenLines {
 
   // The sample k in [lo, hi) whose boundaries hold value (at(k) <= value < at(k + 1)), clamped to the range;
   // lo for NaN. The boundaries are evenly spaced: a guess from the spacing, corrected against the table (a
-  // binary search reads a cold table ten times per region a ray leaves: 5% of mount 6's run at 8 x 8).
+  // binary search reads a cold table ten times per region a ray leaves, a visible share of a run).
   int sampleIndex(int axis, double value, int lo, int hi) const {
     if (!(value == value)) return lo;
     const double guess = std::floor(1.0 + (value - first_[axis]) * perStep_[axis]);  // NaN for inf * 0

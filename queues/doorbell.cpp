@@ -45,7 +45,7 @@ void wakeAll(std::atomic<std::uint32_t>& word) noexcept {
 #endif
 
 namespace {
-// Registering costs an RCU grace period (about 10 ms measured) once the process has a second thread, and
+// Registering costs an RCU grace period once the process has a second thread, and
 // nothing before: register while the program starts, single-threaded, not when the first doorbell is made.
 [[maybe_unused]] const bool registeredAtStart = asymmetricFencesAvailable();
 }  // namespace

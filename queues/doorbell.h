@@ -16,8 +16,8 @@ bool asymmetricFencesAvailable();
 
 // Sleeps while word holds seen (or until woken; callers re-check), and wakes every sleeper on word: the
 // kernel's futex itself on Linux. std::atomic::wait spins and yields first (libstdc++ 12: four
-// sched_yield calls before its futex), on top of the processors' own wait (WaitPolicy): 12,000 of the
-// 46,000 yields of mount 6 at 8 x 8, each a system call that switched threads.
+// sched_yield calls before its futex), on top of the processors' own wait (WaitPolicy): many of a busy
+// run's yields, each a system call that switched threads.
 void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noexcept;
 void wakeAll(std::atomic<std::uint32_t>& word) noexcept;
 

@@ -51,8 +51,8 @@ class HostChannel {
       if (unsent() == 0) return;
       if (inSpare_) {
         // Only the contributions: a node going idle ships the few it has, and 8 x 8's processors, with two
-        // blocks each, often find the queue full (copying whole 8 KB blocks cost mount 6 at 8 x 8 and 256 x
-        // 256 16 M instructions, 1.0%).
+        // blocks each, often find the queue full (copying whole 8 KB blocks there cost instructions for
+        // nothing).
         Block& slot = queue_->claimWaiting();
         slot.count = spare_.count;
         std::copy_n(spare_.items.begin(), spare_.count, slot.items.begin());
@@ -67,7 +67,7 @@ class HostChannel {
     friend class HostChannel;
     explicit Sender(Queue* queue) : queue_(queue) {}
     // The block being filled: a slot of the queue, claimed and filled in place (a block is 8 KB: copying
-    // it in and out cost mount 6 44 M instructions at 256 x 256), or, while the queue is full, the spare,
+    // it in and out cost millions of instructions a run), or, while the queue is full, the spare,
     // copied in when it ships.
     Block& open() {
       if (inSpare_) return spare_;

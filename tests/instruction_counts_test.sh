@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# benchmarks/instruction_counts.sh on a small image (README "Instructions, not seconds"): its rows name each
+# benchmarks/instruction_counts.sh on a small image (benchmarks/results/instruction_counts.md): its rows name each
 # renderer, every ratio and per-message figure is the one its own counts give, the layers add up to the
 # whole, image-parallel runs no interconnect, and a scene that fails is reported as failed while the others
 # go on. Checks arithmetic and bookkeeping, never a count's size.

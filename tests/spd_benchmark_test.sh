@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# benchmarks/spd_benchmark.sh on a small image (README "Benchmark: SPD default sizes"): its tables name every
+# benchmarks/spd_benchmark.sh on a small image (benchmarks/results/spd_default_sizes.md): its tables name every
 # renderer, both take each ratio round by round (checked here against the rounds' own numbers, line k of one
 # renderer's runs against line k of the other's), and a scene that fails is reported as failed while the
 # others go on. Checks arithmetic and bookkeeping, never a time.

@@ -1,7 +1,7 @@
 #pragma once
 // The engines on SimGrid and Open MPI live in a module of their own (raycube_engines.so, beside the program),
 // loaded the first time a run asks for one (--emulate, --transport mpi): SimGrid brings ns-3 and Open MPI
-// its runtime, 30 libraries whose loading and symbol binding cost every run 30-60 ms of a 0.2-1 s render,
+// its runtime, 30 libraries whose loading and symbol binding would cost every run a noticeable share,
 // though most runs use neither. The module's code is the node code of the program itself (it resolves
 // against the program's symbols): one copy of every logical processor, whichever engine drives it.
 // Programs linking the engines' objects directly (the tests, the benchmarks) provide them before main.

@@ -11,13 +11,13 @@
 namespace raycube::host {
 namespace {
 
-// The one fitted constant of the iPSC/1 (README, "Emulated machine time"): the node speed that makes one
+// The one fitted constant of the iPSC/1 (README, "Headline results"): the node speed that makes one
 // processor render the paper's table-2 case (balls 2, 128x128, depth 5) in 13941 s with the cost table
 // above. Fitted once with `raycube scaling --emulate ipsc1 --procs 1 --fit 13941`.
 constexpr double kIpsc1NodeSpeed = 2138.80;
 // A present-day core: the cost table's flop-equivalents per second one core of this host achieves on
-// balls 2, measured by benchmarks/cluster_calibration_benchmark.cpp (node_speed; README, "On a present-day
-// cluster") and copied here by hand.
+// balls 2, measured by benchmarks/cluster_calibration_benchmark.cpp (node_speed;
+// benchmarks/results/emulated_machine.md, "On a present-day cluster") and copied here by hand.
 constexpr double kClusterNodeSpeed = 4.0e8;
 
 std::map<std::string, double CostTable::*> costFields() {

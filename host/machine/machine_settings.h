@@ -56,8 +56,8 @@ struct MachineSettings {
   bool mpi = false;         // run the processors on the other ranks of MPI_COMM_WORLD (host/engines/mpi/mpi_machine.h)
   std::size_t rayBatch = 16;  // MPI: rays per message to one rank, at most
   // Embed the regions in the hypercube (3.7.1) for the report, during the synthesis, when not emulating; the
-  // emulated machine always does, its links need it. Off by default: the BSP's heuristic costs up to 0.1 s
-  // of CPU at 8 x 8, which a short run on few cores feels, for figures only the emulated machine uses.
+  // emulated machine always does, its links need it. Off by default: the BSP's heuristic costs CPU at 8 x 8
+  // that a short run on few cores feels, for figures only the emulated machine uses.
   bool mapHypercube = false;
   // A ray leaving its region beyond the scene's bounds ends there (node/scene_bounds.h) instead of crossing
   // empty regions to the screen's edge; the emulated machine keeps the paper's rays, whose costs table 2

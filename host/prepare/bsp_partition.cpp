@@ -126,7 +126,7 @@ struct Splitter {
     }
     // The first cut's two sides on two cores (every later cut stays on its side's core): each is cut exactly
     // as it would be alone, and its leaves come before the second's, the same partition however many cores
-    // ran it. Mount 6's BSP at 4 x 4 took 10 ms on one core with the other idle.
+    // ran it. On one core alone, the other waited idle through this part of the preparation.
     Splitter before{metric, {}, false}, beyond{metric, {}, false};
     std::future<void> beforeDone = std::async(std::launch::async, [&] {
       before.split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));

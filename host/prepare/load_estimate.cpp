@@ -14,13 +14,9 @@ namespace raycube::host {
 namespace {
 
 // The refined metric: a ray weighs one (its message, walk set-up and shading) plus this share of its work
-// relative to the mean ray's. Chosen on the emulated machine's clock, whose time is its balance (README,
-// figure 15): against 0.1, a share of 0.5 takes balls 2 at 128x128 with light pyramids from 830 / 603 / 415
-// / 268 to 786 / 511 / 309 / 216 simulated s on 16 / 32 / 64 / 128 processors; over 17 configurations (balls
-// 2 at 128x128 and 256x256, teapot 2, jacks 1; pyramids and light rays as messages) 7% less simulated time
-// in geometric mean, 5% more at worst; 0.3 gave 4% and 2%, shares of 0.7 to 4 were worse. The rays
-// processed drift apart as the work evens out: busiest processor 1.21x / 1.26x the mean rays at 16 / 32
-// processors (0.1: 1.09x / 1.16x), its work 1.30x / 1.42x (0.1: 1.56x / 1.60x).
+// relative to the mean ray's. Chosen on the emulated machine's clock, whose time is its balance, over 17
+// configurations: less simulated time than smaller or larger shares (the figures:
+// benchmarks/results/code_comment_measurements.md). The rays processed drift apart as the work evens out.
 constexpr double kWorkShare = 0.5;
 
 // Projects the part of a ray in front of the eye (z >= zNear) between t0 and t1 (t1 may be infinite).

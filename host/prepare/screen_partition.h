@@ -7,8 +7,7 @@
 // image splits the rays crossing it, and a split ray is a message and a walk set-up more. Where every
 // processor has a CPU of its own (the iPSC, its emulation, MPI ranks), the busiest processor sets the pace
 // and the BSP wins. Where 16 or 64 processors share a few cores (threads), the cores set it, busy whatever
-// the balance, and the partition making fewer messages wins: mount 6 at 8 x 8 sends 2.29 M ray messages
-// on the BSP and 1.31 M on the grid (README, issue 13).
+// the balance, and the partition making fewer messages wins, often the grid.
 #include <optional>
 
 #include "core/view.h"

@@ -167,7 +167,7 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   // The spatial queries take the BVH's shape on the other core while this one sub-samples and partitions.
   std::future<SpatialQueries> queries = std::async(std::launch::async, [&] {
     auto shape = std::make_shared<const core::BvhShape>(wholeScene->bvh.shape());
-    // The two trees side by side: sombrero 3's pruning waited 13-25 ms for them, built one after the other.
+    // The two trees side by side: built one after the other, they kept the pruning waiting.
     std::future<BoxTree> inWorld =
         std::async(std::launch::async, [&] { return BoxTree(worldBoxes, *shape); });
     BoxTree inEyeFrame(eyeFrameBoxesOf(boxes), *shape);

@@ -47,9 +47,8 @@ class SharedMemoryInterconnect {
   }
   // The driver, after each step of the processor: wakes those of its neighbours it sent rays to during the
   // step that sleep. Once per step, not per ray: with the fence on the ringer's side (Doorbell's kSymmetric),
-  // a ring per ray cost mount 6 as much as it saved, and the sleepers' membarriers (kAsymmetric) cost the
-  // SPD's small scenes 5-9% at 8 x 8. Paired against both (a ring per ray, kAsymmetric), 8 rounds, wall at
-  // 4 x 4 / 8 x 8: tetra 6 0.99 / 0.93, jacks 4 0.96 / 0.87, balls 4 1.00 / 0.91, mount 6 0.93 / 0.95.
+  // a ring per ray cost as much as it saved, and the sleepers' membarriers (kAsymmetric) cost the SPD's
+  // small scenes more at 8 x 8 than a fence per ring.
   void ringNeighbours(int processor);
   ContributionChannel& hostChannel() { return channel_; }
   // Rays waiting in every processor's overflow lists, as they report them (BasicTransport::countWaiting).

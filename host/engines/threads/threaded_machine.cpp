@@ -28,7 +28,7 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
     }
   }
   // 3.2 steps 2-3: every processor subdivides its region into cells, on the host's cores (64 threads doing
-  // so at once on two cores took a third longer: sombrero 3 at 8 x 8, 11-17 -> 9-10 ms); when all have done
+  // so at once on two cores took longer, competing for them); when all have done
   // so, their threads start and the host lets the synthesis phase begin.
   std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> nodes(setups.size());
   parallelFor(processors, [&](int id) {
