@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "host/engines/machine_wire.h"
 #include "host/engines/wire_codec.h"
 #include "host/util/clock.h"
 #include "queues/host_channel.h"
@@ -20,7 +21,6 @@ namespace raycube::host {
 namespace {
 
 namespace s4u = simgrid::s4u;
-static_assert(std::is_trivially_copyable_v<ProcessorReport>);
 
 // ---- The child's results travel to the parent through a pipe, as tagged records.
 enum class Record : std::uint8_t { SynthesisStarts, Contributions, Progress, Reports, Failure };
@@ -182,28 +182,73 @@ struct SimulationInput {
   const std::vector<std::uint32_t>& cubeNode;
 };
 
+// SimGrid's settings: the CM02 network model without cross-traffic, so that a platform's numbers mean what
+// they say (machines-and-engines.md), and only critical messages.
+std::vector<std::string> simulationArguments() {
+  return {"raycube", "--cfg=network/model:CM02", "--cfg=network/crosstraffic:0", "--log=root.thres:critical"};
+}
+
+// The loaded platform's hosts for the interconnect: node-<n> for each hypercube node, and the manager.
+queues::SimGridWiring wiringFor(const SimulationInput& in) {
+  queues::SimGridWiring wiring;
+  wiring.capacity = in.queueCapacity;
+  wiring.cubeNode = in.cubeNode;
+  const std::uint32_t cubeNodes = cubeNodesFor(in.cubeNode);
+  for (std::uint32_t n = 0; n < cubeNodes; ++n) wiring.hosts.push_back(hostNamed(hostName(n), in.platform));
+  wiring.manager = hostNamed(queues::kCubeManagerHost, in.platform);
+  wiring.routing = in.platform.routing;
+  wiring.relayFlops = in.platform.costs.messageRelayed * speedScale(in.platform, *wiring.hosts[0]);
+  return wiring;
+}
+
+// SimGrid returns from run() on a deadlock as on completion: check that every actor finished.
+void requireCompleted(bool terminated, int finished, int processors, bool hostDone) {
+  if (!terminated || finished != processors || !hostDone)
+    throw std::runtime_error(
+        fmt::format("the simulation deadlocked at {:.6f} simulated s: termination {}, {} of {} processors "
+                    "finished, host {}",
+                    s4u::Engine::get_clock(), terminated ? "announced" : "not announced", finished,
+                    processors, hostDone ? "done" : "still waiting"));
+}
+
+// What the simulation measured: its clock, the traffic on its links and the processors' timelines; the
+// reports take the nodes' counts and the time their hosts spent relaying.
+template <class Real>
+EmulatedRun emulatedRunOf(const SimulationInput& in, const queues::SimGridInterconnect<Real>& net,
+                          const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes,
+                          const s4u::Host& node0, std::vector<ProcessorReport>& reports,
+                          std::vector<Timeline>& timelines) {
+  EmulatedRun run;
+  run.platform = in.platform.name;
+  run.nodeSpeed = in.platform.nodeSpeed.value_or(node0.get_speed());
+  for (std::size_t p = 0; p < nodes.size(); ++p) {
+    reports[p].node = nodes[p]->stats();
+    reports[p].forwardSeconds = net.relaySeconds(in.cubeNode[p]);
+  }
+  for (const queues::LinkTrafficCount& t : net.traffic()) {
+    run.links.push_back({t.from, t.to, t.messages, t.bytes});
+    if (t.to != kHostNode) run.rayMessages += t.messages;
+  }
+  for (Timeline& t : timelines) {
+    auto part = t.take();
+    run.timeline.insert(run.timeline.end(), part.begin(), part.end());
+  }
+  return run;
+}
+
 // The whole simulation, in the child process: results to `out`.
 template <class Real>
 void simulate(SimulationInput in, PipeWriter& out) {
   const auto wallStart = Clock::now();
-  std::vector<std::string> args = {"raycube", "--cfg=network/model:CM02", "--cfg=network/crosstraffic:0",
-                                   "--log=root.thres:critical"};
+  std::vector<std::string> args = simulationArguments();
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   int argc = int(args.size());
   s4u::Engine engine(&argc, argv.data());
-  const std::uint32_t cubeNodes = cubeNodesFor(in.cubeNode);
   loadPlatform(engine, in.platform);
-
-  queues::SimGridWiring wiring;
-  wiring.capacity = in.queueCapacity;
-  wiring.cubeNode = in.cubeNode;
-  for (std::uint32_t n = 0; n < cubeNodes; ++n) wiring.hosts.push_back(hostNamed(hostName(n), in.platform));
-  wiring.manager = hostNamed(queues::kCubeManagerHost, in.platform);
-  wiring.routing = in.platform.routing;
+  const queues::SimGridWiring wiring = wiringFor(in);
   const double scale = speedScale(in.platform, *wiring.hosts[0]);
-  wiring.relayFlops = in.platform.costs.messageRelayed * scale;
   queues::SimGridInterconnect<Real> net(in.context.regions, wiring);
 
   const int processors = int(in.setups.size());
@@ -233,40 +278,14 @@ void simulate(SimulationInput in, PipeWriter& out) {
   });
   net.startCommunicationTasks();
   engine.run();
-  if (!net.terminated() || finished != processors || !hostDone)
-    throw std::runtime_error(
-        fmt::format("the simulation deadlocked at {:.6f} simulated s: termination {}, {} of {} processors "
-                    "finished, host {}",
-                    s4u::Engine::get_clock(), net.terminated() ? "announced" : "not announced", finished,
-                    processors, hostDone ? "done" : "still waiting"));
+  requireCompleted(net.terminated(), finished, processors, hostDone);
   toParent.flush();
 
-  EmulatedRun run;
-  run.platform = in.platform.name;
+  EmulatedRun run = emulatedRunOf(in, net, nodes, *wiring.hosts[0], reports, timelines);
   run.makespan = makespan;
-  run.nodeSpeed = in.platform.nodeSpeed.value_or(wiring.hosts[0]->get_speed());
-  for (int p = 0; p < processors; ++p) {
-    reports[p].node = nodes[p]->stats();
-    reports[p].forwardSeconds = net.relaySeconds(in.cubeNode[p]);
-  }
-  for (const queues::LinkTrafficCount& t : net.traffic()) {
-    run.links.push_back({t.from, t.to, t.messages, t.bytes});
-    if (t.to != kHostNode) run.rayMessages += t.messages;
-  }
-  for (Timeline& t : timelines) {
-    auto part = t.take();
-    run.timeline.insert(run.timeline.end(), part.begin(), part.end());
-  }
   run.wallSeconds = secondsSince(wallStart);
   out.value(Record::Reports);
-  out.vector(reports);
-  out.string(run.platform);
-  out.value(run.makespan);
-  out.value(run.nodeSpeed);
-  out.value(run.rayMessages);
-  out.value(run.wallSeconds);
-  out.vector(run.links);
-  out.vector(run.timeline);
+  writeEmulatedResults(out, reports, run);
 }
 
 // The parent's side: the start of synthesis, contributions to the host's sink and progress as they come,
@@ -284,18 +303,7 @@ MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
     } else if (tag == Record::Failure) {
       throw std::runtime_error(in.string());
     } else {
-      MachineRun run;
-      run.processors = in.vector<ProcessorReport>();
-      EmulatedRun s;
-      s.platform = in.string();
-      s.makespan = in.value<double>();
-      s.nodeSpeed = in.value<double>();
-      s.rayMessages = in.value<std::uint64_t>();
-      s.wallSeconds = in.value<double>();
-      s.links = in.vector<LinkTraffic>();
-      s.timeline = in.vector<StateInterval>();
-      run.emulated = std::move(s);
-      return run;
+      return readEmulatedResults(in);
     }
   }
 }
