@@ -1,7 +1,8 @@
-// Calibration of the `cluster` platform's node speed (host/machine/emulated_platform.cpp, kClusterNodeSpeed): how
-// many of the cost table's flop-equivalents per second one core of this host achieves. Time is charged in
-// simulated time from counted work (issue 12: never measured), so the one number that ties the cluster to
-// this host is measured here, once, and copied into the source by hand; no test depends on it.
+// Calibration of the `cluster` platform's node speed (host/machine/platforms/cluster.xml, written by
+// generate.sh there): how many of the cost table's flop-equivalents per second one core of this host
+// achieves. Time is charged in simulated time from counted work (issue 12: never measured), so the one number
+// that ties the cluster to this host is measured here, once, and copied into the platform by hand; no test
+// depends on it.
 //
 //   cluster_calibration_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //

@@ -37,30 +37,62 @@ void Whitted::finishLightRay(const BasicTracedRay<Real>& ray, double transmissio
     out.contributions.push_back(Contribution{ray.sample, transmission * Color(ray.weight)});
 }
 
+namespace {
+
+// A reflected or refracted ray (3.4): from `origin` along the unit `direction`, one level deeper than its
+// parent, carrying its weight times `share`.
+template <class Real>
+BasicTracedRay<Real> secondaryRay(const BasicTracedRay<Real>& parent, RayKind kind, const Vec3Of<Real>& origin,
+                                  const Vec3Of<Real>& direction, Real share) {
+  BasicTracedRay<Real> spawned;
+  spawned.ray.direction = direction;
+  spawned.ray.origin = origin;
+  spawned.ray.tMin = 0;
+  spawned.ray.tMax = std::numeric_limits<Real>::infinity();
+  spawned.coeff = parent.coeff * share;
+  spawned.sample = parent.sample;
+  spawned.depth = std::uint8_t(parent.depth + 1);
+  spawned.kind = kind;
+  return spawned;
+}
+
+}  // namespace
+
 // The shading arithmetic is in the ray's precision Real: materials and lights are rounded to it.
 template <class Real>
 void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRayOutcome<Real>& out) const {
   using V = Vec3Of<Real>;
   const Object& object = scene_.objects[hit.object];
   const Material& m = scene_.materials[object.material];
-  const Real kd = Real(m.kd), ks = Real(m.ks), transmission = Real(m.transmission);
+  const Real kd = Real(m.kd);
   const Real tHit = Real(hit.t);
   const BasicSurfacePoint<Real> sp = surfaceAt(object, ray.ray, tHit);
   const V& d = ray.ray.direction;
   // The side of the surface the ray arrives on; normals are flipped to face it.
   const bool entering = glm::dot(sp.geometricNormal, d) < 0;
-  const V ng = entering ? sp.geometricNormal : -sp.geometricNormal;
-  V n = entering ? sp.shadingNormal : -sp.shadingNormal;
+  const FacingHit<Real> at{sp.point, entering ? sp.geometricNormal : -sp.geometricNormal,
+                           entering ? sp.shadingNormal : -sp.shadingNormal, tHit, entering};
   const V diffuse = kd * V(m.color);
 
   if (m.kd > 0)
     out.contributions.push_back(Contribution{ray.sample, Color(ray.coeff * Real(ambient_) * diffuse)});
+  spawnLightRays(ray, m, at, diffuse, out);
+  if (ray.depth >= options_.maxDepth) return;
+  spawnSecondaryRays(ray, m, at, out);
+}
 
-  const V toViewer = -d;
-  const V lightRayOrigin = spawnOrigin(sp.point, ng, tHit);
+// Section 3.4: a light ray towards each light the surface faces, carrying the Phong terms it would add.
+template <class Real>
+void Whitted::spawnLightRays(const BasicTracedRay<Real>& ray, const Material& m, const FacingHit<Real>& at,
+                             const Vec3Of<Real>& diffuse, BasicRayOutcome<Real>& out) const {
+  using V = Vec3Of<Real>;
+  const Real ks = Real(m.ks);
+  const V& n = at.shadingNormal;
+  const V toViewer = -ray.ray.direction;
+  const V lightRayOrigin = spawnOrigin(at.point, at.geometricNormal, at.t);
   for (std::size_t i = 0; i < scene_.lights.size(); ++i) {
     const V lightPosition(scene_.lights[i].position);
-    const V toLight = lightPosition - sp.point;
+    const V toLight = lightPosition - at.point;
     const Real distance = glm::length(toLight);
     if (distance == 0) continue;
     const V l = toLight / distance;
@@ -87,40 +119,33 @@ void Whitted::shadeHit(const BasicTracedRay<Real>& ray, const Hit& hit, BasicRay
     lightRay.light = std::uint16_t(i);
     out.spawned.push_back(lightRay);
   }
+}
 
-  if (ray.depth >= options_.maxDepth) return;
+// Section 3.4: the refracted ray (Snell's law) where the material transmits, and the reflected ray.
+template <class Real>
+void Whitted::spawnSecondaryRays(const BasicTracedRay<Real>& ray, const Material& m, const FacingHit<Real>& at,
+                                 BasicRayOutcome<Real>& out) const {
+  using V = Vec3Of<Real>;
+  const Real ks = Real(m.ks), transmission = Real(m.transmission);
+  const V& d = ray.ray.direction;
+  const V& n = at.shadingNormal;
   Real reflectCoeff = ks;
   if (m.transmission > 0) {
     // Snell's law; eta is the ratio of indices across the surface in the ray's direction.
-    const Real eta = entering ? Real(1.0 / m.ior) : Real(m.ior);
+    const Real eta = at.entering ? Real(1.0 / m.ior) : Real(m.ior);
     const Real cosI = -glm::dot(n, d);
     const Real k = 1 - eta * eta * (1 - cosI * cosI);
     if (k < 0) {
       reflectCoeff += transmission;  // total internal reflection: the transmitted share is reflected
     } else if (worthSpawning(ray.coeff * transmission)) {
-      BasicTracedRay<Real> refracted;
-      refracted.ray.direction = glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n);
-      refracted.ray.origin = spawnOrigin(sp.point, -ng, tHit);
-      refracted.ray.tMin = 0;
-      refracted.ray.tMax = std::numeric_limits<Real>::infinity();
-      refracted.coeff = ray.coeff * transmission;
-      refracted.sample = ray.sample;
-      refracted.depth = std::uint8_t(ray.depth + 1);
-      refracted.kind = RayKind::Refracted;
-      out.spawned.push_back(refracted);
+      out.spawned.push_back(secondaryRay(ray, RayKind::Refracted, spawnOrigin(at.point, -at.geometricNormal, at.t),
+                                         V(glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n)), transmission));
     }
   }
   if (reflectCoeff > 0 && worthSpawning(ray.coeff * reflectCoeff)) {
-    BasicTracedRay<Real> reflected;
-    reflected.ray.direction = glm::normalize(d + 2 * glm::dot(n, toViewer) * n);
-    reflected.ray.origin = spawnOrigin(sp.point, ng, tHit);
-    reflected.ray.tMin = 0;
-    reflected.ray.tMax = std::numeric_limits<Real>::infinity();
-    reflected.coeff = ray.coeff * reflectCoeff;
-    reflected.sample = ray.sample;
-    reflected.depth = std::uint8_t(ray.depth + 1);
-    reflected.kind = RayKind::Reflected;
-    out.spawned.push_back(reflected);
+    const V toViewer = -d;
+    out.spawned.push_back(secondaryRay(ray, RayKind::Reflected, spawnOrigin(at.point, at.geometricNormal, at.t),
+                                       V(glm::normalize(d + 2 * glm::dot(n, toViewer) * n)), reflectCoeff));
   }
 }
 

@@ -71,6 +71,20 @@ class Whitted {
   bool worthSpawning(double coeff) const { return coeff * options_.raysPerSample >= options_.minWeight; }
 
  private:
+  // A hit seen from the side the ray arrives on: its normals flipped to face that side.
+  template <class Real>
+  struct FacingHit {
+    Vec3Of<Real> point, geometricNormal, shadingNormal;
+    Real t;
+    bool entering;
+  };
+  template <class Real>
+  void spawnLightRays(const BasicTracedRay<Real>& ray, const Material& m, const FacingHit<Real>& at,
+                      const Vec3Of<Real>& diffuse, BasicRayOutcome<Real>& out) const;
+  template <class Real>
+  void spawnSecondaryRays(const BasicTracedRay<Real>& ray, const Material& m, const FacingHit<Real>& at,
+                          BasicRayOutcome<Real>& out) const;
+
   const Scene& scene_;
   ShadingOptions options_;
   std::vector<Color> lightIntensity_;

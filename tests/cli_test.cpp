@@ -15,6 +15,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "core/spd/balls.h"
 #include "core/image.h"
@@ -390,6 +392,45 @@ TEST_F(Cli, EnginesModuleIsLoadedOnlyWhenARunNeedsIt) {
   expectOneLineError("render --balls 1 --size 16x16 --mode machine --procs 2x2 --emulate ipsc1 -o x.png",
                      {"raycube_engines", "nowhere/raycube_engines.so"}, missing);
   expectOneLineError("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2", {"RAYCUBE_ENGINES"}, missing);
+}
+
+// The built-in machines are the shipped files host/machine/platforms/<name>.xml and .costs: they give the
+// simulated runs the machines built in code gave (makespans and ray messages read from raycube at 5547b43,
+// which built them in code; the 3x3 grid relays messages between non-neighbours), to the last digit.
+TEST_F(Cli, ShippedPlatformsGiveTheSimulatedRunsOfTheMachinesOnceBuiltInCode) {
+  for (const auto& [platform, procs, makespan, messages] :
+       std::vector<std::tuple<std::string, std::string, double, int>>{
+           {"ipsc1", "2x2", 76.98374638788101, 753},
+           {"ipsc1", "3x3", 35.71952954613807, 1909},
+           {"cluster", "2x2", 0.0004257619000000003, 733}}) {
+    SCOPED_TRACE(platform + " " + procs);
+    const Outcome r =
+        run("render --balls 1 --size 16x16 --light-rays messages -q -o x.png --stats s.json --procs " +
+            procs + " --emulate " + platform);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json simulated = nlohmann::json::parse(slurp(dir_ / "s.json")).at("simulated");
+    EXPECT_EQ(simulated.at("makespanSeconds").get<double>(), makespan);
+    EXPECT_EQ(simulated.at("rayMessages").get<int>(), messages);
+    EXPECT_EQ(simulated.at("platform").get<std::string>(), platform);
+  }
+}
+
+// A missing or broken platform file is one line naming it.
+TEST_F(Cli, PlatformFileErrorsNameTheFile) {
+  expectOneLineError("render --balls 1 --size 16x16 --procs 2x2 --emulate ipsc1 -o x.png",
+                     {"ipsc1.xml", "nowhere"},
+                     "RAYCUBE_PLATFORMS=" + quoted((dir_ / "nowhere").string()) + " ");
+  std::ofstream(dir_ / "broken.xml") << "<?xml version='1.0'?>\n<platform version=\"4.1\">\n<zone id=\"m\"\n";
+  expectOneLineError("render --balls 1 --size 16x16 --procs 2x2 --platform broken.xml -o x.png",
+                     {"broken.xml"});
+  std::ofstream(dir_ / "nodeless.xml")
+      << "<?xml version='1.0'?>\n"
+         "<!DOCTYPE platform SYSTEM \"https://simgrid.org/simgrid.dtd\">\n"
+         "<platform version=\"4.1\">\n"
+         "<zone id=\"m\" routing=\"Full\"><host id=\"manager\" speed=\"1f\"/>"
+         "</zone></platform>\n";
+  expectOneLineError("render --balls 1 --size 16x16 --procs 2x2 --platform nodeless.xml -o x.png",
+                     {"nodeless.xml", "node-0"});
 }
 
 TEST_F(Cli, ScalingWritesPlotAndReport) {

@@ -65,33 +65,50 @@ TEST(EmulatedMachine, TheSameRunGivesTheSameSimulatedTimeToTheLastDigit) {
   }
 }
 
+// A platform written for a test: one node at one flop-equivalent per second and a host link that costs
+// nothing.
+std::filesystem::path oneFreeNodePlatform() {
+  const auto path = std::filesystem::temp_directory_path() / "raycube_one_free_node.xml";
+  std::ofstream(path) << R"(<?xml version='1.0'?>
+<!DOCTYPE platform SYSTEM "https://simgrid.org/simgrid.dtd">
+<platform version="4.1">
+  <zone id="machine" routing="Full">
+    <host id="node-0" speed="1f"/>
+    <host id="manager" speed="1f"/>
+    <link id="node-0:manager" bandwidth="1e30Bps" latency="0s"/>
+    <route src="node-0" dst="manager" symmetrical="NO"><link_ctn id="node-0:manager"/></route>
+  </zone>
+</platform>
+)";
+  return path;
+}
+
 // One processor whose only cost is one second per ray segment, and a host link that costs nothing: the
 // simulated time is the number of segments it processed, to the last bit.
 TEST(EmulatedMachine, OneProcessorTakesExactlyItsChargedWork) {
   const core::Scene scene = core::makeBalls(1);
   MachineSettings m = emulated(1, 1);
-  m.emulate->costs = CostTable{};
-  CostTable& c = m.emulate->costs;
-  c = CostTable{0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
-  m.emulate->nodeSpeed = 1;
-  m.emulate->hostLinkLatency = 0;
-  m.emulate->hostLinkBandwidth = 1e30;
+  m.emulate = userPlatform(oneFreeNodePlatform(), {});
+  m.emulate->costs = CostTable{0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
   MachineReport report;
   renderMachineWatched(scene, settingsFor(16), m, report, "hand");
   const double segments = double(report.processors[0].node.processed.totalRays());
   EXPECT_EQ(report.processors[0].computeSeconds, segments);
   EXPECT_NEAR(report.emulated->makespan, segments, 1e-9 * segments);
   EXPECT_EQ(report.processors[0].blockedSeconds, 0);
+  EXPECT_EQ(report.emulated->nodeSpeed, 1);
 }
 
-// Doubling the node speed halves the compute time of the same work; links do not change.
+// A cost table's nodeSpeed of twice the platform's halves the compute time of the same work; links do not
+// change.
 TEST(EmulatedMachine, ComputeTimeScalesWithTheNodeSpeed) {
   const core::Scene scene = core::makeBalls(1);
   MachineSettings slow = emulated(1, 2), fast = emulated(1, 2);
-  fast.emulate->nodeSpeed = 2 * slow.emulate->nodeSpeed;
   MachineReport a, b;
   renderMachineWatched(scene, settingsFor(16), slow, a, "slow");
+  fast.emulate->nodeSpeed = 2 * a.emulated->nodeSpeed;
   renderMachineWatched(scene, settingsFor(16), fast, b, "fast");
+  EXPECT_EQ(b.emulated->nodeSpeed, 2 * a.emulated->nodeSpeed);
   for (std::size_t p = 0; p < a.processors.size(); ++p)
     EXPECT_DOUBLE_EQ(a.processors[p].computeSeconds, 2 * b.processors[p].computeSeconds) << p;
 }
@@ -129,6 +146,18 @@ TEST(EmulatedMachine, CostFilesAreCheckedWithFileAndLine) {
   EXPECT_EQ(p.routing, Routing::Direct);
   EXPECT_THROW(builtinPlatform("cm5"), std::invalid_argument);
   std::filesystem::remove(path);
+}
+
+// The shipped cost tables (host/machine/platforms/*.costs) spell out CostTable's hand counts, so a user's
+// platform without --costs costs what the built-in ones do; they differ in routing only.
+TEST(EmulatedMachine, ShippedPlatformsCarryTheHandCountedCosts) {
+  const EmulatedPlatform ipsc1 = builtinPlatform("ipsc1"), cluster = builtinPlatform("cluster");
+  EXPECT_EQ(ipsc1.costs, CostTable{});
+  EXPECT_EQ(cluster.costs, CostTable{});
+  EXPECT_EQ(ipsc1.routing, Routing::StoreAndForward);
+  EXPECT_EQ(cluster.routing, Routing::Direct);
+  EXPECT_EQ(ipsc1.platformFile.filename(), "ipsc1.xml");
+  EXPECT_FALSE(ipsc1.nodeSpeed) << "the speed is the platform's";
 }
 
 // The scaling plot names itself, its axes and its curves in the SVG's text; the paper's curve only where

@@ -573,7 +573,7 @@ int runScaling(ScalingCommand& cmd) {
   if (cmd.fit > 0) {
     if (points.front().processors != 1) throw std::invalid_argument("--fit needs 1 among --procs");
     std::cout << fmt::format("fit: a node speed of {:.6g} flop-equivalents/s makes one processor take {} s\n",
-                             machine.emulate->nodeSpeed * points.front().makespan / cmd.fit, cmd.fit);
+                             points.front().nodeSpeed * points.front().makespan / cmd.fit, cmd.fit);
   }
   if (!cmd.csv.empty()) writeScalingCsv(points, ensureParent(cmd.csv));
   const LineChart plot = scalingPlot(points, scene, settings, machine.emulate->name);

@@ -2,7 +2,8 @@
 // What travels between the host and a node's address space (Priol & Bouatouch 3.2 steps 1-2: the host
 // sends each processor its setup, holding the only objects it needs, its RegionDatabase), as bytes: the
 // one place where setups, context and reports are serialised. The MPI engine sends a job to each rank
-// (the shared context and the setups of its processors) and gets reports back.
+// (the shared context and the setups of its processors) and gets reports back; the simulation's child
+// process sends its reports and emulated run back through a pipe.
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "core/precision.h"
+#include "host/machine/machine_engine.h"
 #include "host/machine/machine_report.h"
 #include "host/engines/wire_codec.h"
 #include "node/logical_processor.h"
@@ -78,5 +80,37 @@ struct RankResults {
 };
 std::vector<char> encodeResults(const RankResults& results);
 RankResults decodeResults(std::span<const char> bytes);
+
+// What the simulation sends back when its machine has terminated (host/engines/simgrid/emulated_machine.cpp),
+// over its pipe: the processors' reports and the emulated run.
+template <class Sink>
+void writeEmulatedResults(WireEncoder<Sink>& out, const std::vector<ProcessorReport>& processors,
+                          const EmulatedRun& run) {
+  static_assert(std::is_trivially_copyable_v<ProcessorReport>);
+  out.vector(processors);
+  out.string(run.platform);
+  out.value(run.makespan);
+  out.value(run.nodeSpeed);
+  out.value(run.rayMessages);
+  out.value(run.wallSeconds);
+  out.vector(run.links);
+  out.vector(run.timeline);
+}
+
+template <class Source>
+MachineRun readEmulatedResults(WireDecoder<Source>& in) {
+  MachineRun machine;
+  machine.processors = in.template vector<ProcessorReport>();
+  EmulatedRun run;
+  run.platform = in.string();
+  run.makespan = in.template value<double>();
+  run.nodeSpeed = in.template value<double>();
+  run.rayMessages = in.template value<std::uint64_t>();
+  run.wallSeconds = in.template value<double>();
+  run.links = in.template vector<LinkTraffic>();
+  run.timeline = in.template vector<StateInterval>();
+  machine.emulated = std::move(run);
+  return machine;
+}
 
 }  // namespace raycube::host

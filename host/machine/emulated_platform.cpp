@@ -1,8 +1,11 @@
 #include "host/machine/emulated_platform.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -11,14 +14,7 @@
 namespace raycube::host {
 namespace {
 
-// The one fitted constant of the iPSC/1 (README, "Headline results"): the node speed that makes one
-// processor render the paper's table-2 case (balls 2, 128x128, depth 5) in 13941 s with the cost table
-// above. Fitted once with `raycube scaling --emulate ipsc1 --procs 1 --fit 13941`.
-constexpr double kIpsc1NodeSpeed = 2138.80;
-// A present-day core: the cost table's flop-equivalents per second one core of this host achieves on
-// balls 2, measured by benchmarks/cluster_calibration_benchmark.cpp (node_speed;
-// benchmarks/results/emulated_machine.md, "On a present-day cluster") and copied here by hand.
-constexpr double kClusterNodeSpeed = 4.0e8;
+constexpr std::string_view kBuiltinPlatforms[] = {"ipsc1", "cluster"};
 
 std::map<std::string, double CostTable::*> costFields() {
   return {{"sphereTest", &CostTable::sphereTest},           {"coneTest", &CostTable::coneTest},
@@ -50,27 +46,37 @@ double CostTable::flopsOf(const node::NodeStats& n) const {
          tokenVisit * double(n.tokenVisits);
 }
 
+std::vector<std::filesystem::path> platformDirectories() {
+  if (const char* path = std::getenv("RAYCUBE_PLATFORMS"); path != nullptr && *path != '\0') return {path};
+  std::vector<std::filesystem::path> directories;
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    directories.push_back(self.parent_path() / "platforms");
+    directories.push_back(self.parent_path().parent_path() / "share" / "raycube" / "platforms");
+  }
+  directories.emplace_back(RAYCUBE_BUILD_PLATFORMS);
+  return directories;
+}
+
 EmulatedPlatform builtinPlatform(std::string_view name) {
-  EmulatedPlatform p;
-  p.name = std::string(name);
-  if (name == "ipsc1") {
-    // Intel iPSC/1 (machines-and-engines.md): 80286/80287 nodes at 8 MHz; 10 Mbit/s Ethernet-chip links;
-    // about 1 ms to a neighbour and 1 ms more per further hop, routed store and forward in node software.
-    p.nodeSpeed = kIpsc1NodeSpeed;
-    p.linkLatency = p.hostLinkLatency = 1e-3;
-    p.linkBandwidth = p.hostLinkBandwidth = 10e6 / 8;
-    p.routing = Routing::StoreAndForward;
+  if (std::find(std::begin(kBuiltinPlatforms), std::end(kBuiltinPlatforms), name) ==
+      std::end(kBuiltinPlatforms))
+    throw std::invalid_argument(fmt::format("--emulate {}: the built-in platforms are {}", name,
+                                            fmt::join(kBuiltinPlatforms, " and ")));
+  const std::string xml = fmt::format("{}.xml", name), costs = fmt::format("{}.costs", name);
+  const std::vector<std::filesystem::path> directories = platformDirectories();
+  for (const std::filesystem::path& directory : directories) {
+    if (!std::filesystem::exists(directory / xml)) continue;
+    EmulatedPlatform p = userPlatform(directory / xml, directory / costs);
+    p.name = std::string(name);
     return p;
   }
-  if (name == "cluster") {
-    // A present-day cluster: links of about 1 us and 10 GB/s through a switch.
-    p.nodeSpeed = kClusterNodeSpeed;
-    p.linkLatency = p.hostLinkLatency = 1e-6;
-    p.linkBandwidth = p.hostLinkBandwidth = 10e9;
-    p.routing = Routing::Direct;
-    return p;
-  }
-  throw std::invalid_argument(fmt::format("--emulate {}: the built-in platforms are ipsc1 and cluster", name));
+  std::vector<std::string> places;
+  for (const std::filesystem::path& directory : directories) places.push_back(directory.string());
+  throw std::runtime_error(
+      fmt::format("--emulate {}: {} is in none of {} (set RAYCUBE_PLATFORMS to its folder)", name, xml,
+                  fmt::join(places, ", ")));
 }
 
 void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platform) {
@@ -113,7 +119,7 @@ void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platfor
 EmulatedPlatform userPlatform(const std::filesystem::path& platformFile, const std::filesystem::path& costs) {
   if (!std::filesystem::is_regular_file(platformFile))
     throw std::runtime_error(fmt::format("--platform {}: not a readable file", platformFile.string()));
-  EmulatedPlatform p = builtinPlatform("ipsc1");  // costs and speed unless the cost table says otherwise
+  EmulatedPlatform p;  // CostTable's costs and store and forward unless the cost table says otherwise
   p.name = platformFile.filename().string();
   p.platformFile = platformFile;
   if (!costs.empty()) applyCostFile(costs, p);

@@ -3,8 +3,10 @@
 // cost, how messages are routed, and what each operation the node counts costs. Time is charged from
 // counted work, never measured, so a simulated time is the same on every run and every computer.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "node/logical_processor.h"
 #include "queues/routing.h"
@@ -33,26 +35,32 @@ struct CostTable {
   // What a node's counted work costs, in flop-equivalents (linear: a difference of two calls is the cost
   // of the work between them).
   double flopsOf(const node::NodeStats& stats) const;
+  bool operator==(const CostTable&) const = default;
 };
 
 using queues::Routing;
 
+// A machine is data: a SimGrid platform (hosts node-0 ... node-<2^d - 1> and manager, links, routes) and a
+// cost table. The built-in ones ship as host/machine/platforms/<name>.xml and <name>.costs.
 struct EmulatedPlatform {
   std::string name;
-  double nodeSpeed = 1;                 // flop-equivalents per second
-  double linkLatency = 0;               // s, per hop
-  double linkBandwidth = 1;             // bytes/s, per direction
-  double hostLinkLatency = 0;           // node to host (the cube manager)
-  double hostLinkBandwidth = 1;
-  Routing routing = Routing::Direct;
-  std::filesystem::path platformFile;  // a user's SimGrid platform (hosts node-0 ... and manager); empty: built in
+  std::filesystem::path platformFile;  // the SimGrid platform
+  Routing routing = Routing::StoreAndForward;
+  std::optional<double> nodeSpeed;  // a cost table's nodeSpeed (flop-equivalents/s): replaces the platform's
   CostTable costs;
 };
 
-// "ipsc1" or "cluster"; throws std::invalid_argument naming the choices otherwise.
+// Where the shipped platforms are, in the order looked at: $RAYCUBE_PLATFORMS if set; platforms/ beside the
+// program (the build tree); <prefix>/share/raycube/platforms for a program installed in <prefix>/bin; the
+// build tree's copy (for test programs).
+std::vector<std::filesystem::path> platformDirectories();
+// "ipsc1" or "cluster" (<name>.xml and <name>.costs in the first of platformDirectories() that has them);
+// throws std::invalid_argument naming the choices for another name, std::runtime_error naming the places
+// looked at when the files are missing.
 EmulatedPlatform builtinPlatform(std::string_view name);
 // --platform FILE.xml [--costs FILE]: a SimGrid platform and a cost table of "name value" lines (any
-// CostTable field, plus nodeSpeed and routing store-and-forward|direct). Errors name file:line.
+// CostTable field, plus nodeSpeed and routing store-and-forward|direct). Errors name file:line. The
+// built-in platforms come this way too.
 EmulatedPlatform userPlatform(const std::filesystem::path& platformFile, const std::filesystem::path& costs);
 void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platform);
 

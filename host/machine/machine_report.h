@@ -38,7 +38,8 @@ struct LinkTraffic {
 inline constexpr std::uint32_t kHostNode = UINT32_MAX;
 struct EmulatedRun {
   std::string platform;
-  double makespan = 0;  // simulated seconds from the start of synthesis to the last contribution
+  double makespan = 0;            // simulated seconds from the start of synthesis to the last contribution
+  double nodeSpeed = 0;           // node-0's speed, flop-equivalents per second (what --fit scales)
   std::uint64_t rayMessages = 0;  // simulated ray messages, relays included
   double wallSeconds = 0;         // what the simulation took on this host
   std::vector<LinkTraffic> links;

@@ -46,6 +46,7 @@ std::vector<ScalingPoint> scalingStudy(const core::Scene& scene, const RenderSet
     point.rows = machine.rows;
     point.columns = machine.columns;
     point.makespan = report.emulated->makespan;
+    point.nodeSpeed = report.emulated->nodeSpeed;
     point.blockedShare = blockedShare(report);
     point.rayMessages = report.emulated->rayMessages;
     point.wallSeconds = report.emulated->wallSeconds;

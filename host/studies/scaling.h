@@ -14,8 +14,9 @@ namespace raycube::host {
 struct ScalingPoint {
   int processors = 0;
   int rows = 0, columns = 0;
-  double makespan = 0;  // simulated seconds
-  double speedup = 0;   // against the smallest count, scaled by it (so 1 processor gives 1)
+  double makespan = 0;   // simulated seconds
+  double nodeSpeed = 0;  // the emulated node-0's speed, flop-equivalents per second
+  double speedup = 0;    // against the smallest count, scaled by it (so 1 processor gives 1)
   double efficiency = 0;
   double blockedShare = 0;  // of processor-time, waiting on full FIFOs
   std::uint64_t rayMessages = 0;

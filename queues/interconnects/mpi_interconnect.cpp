@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "queues/interconnects/face_fifo_inbox.h"
+
 namespace raycube::queues {
 namespace {
 
@@ -91,20 +93,8 @@ class MpiInterconnect<Real>::Endpoint final : public node::BasicTransport<Real> 
     if (const auto* credits = net_.credits_[id_][slot]) return credits->load(std::memory_order_acquire) > 0;
     return net_.outgoing_[id_][slot]->hasSpace();
   }
-  std::size_t receive(std::span<Message> into) override {
-    const std::vector<RayQueue*>& incoming = net_.incoming_[id_];
-    std::size_t n = 0;
-    const std::size_t count = incoming.size();
-    for (std::size_t k = 0; k < count && n < into.size(); ++k)
-      n += incoming[(next_ + k) % count]->tryPopN(into.subspan(n));
-    if (count > 0) next_ = (next_ + 1) % count;  // fairness between neighbours
-    return n;
-  }
-  bool anyIncoming() const override {
-    for (RayQueue* q : net_.incoming_[id_])
-      if (q->hasMessage()) return true;
-    return false;
-  }
+  std::size_t receive(std::span<Message> into) override { return inbox_.receive(net_.incoming_[id_], into); }
+  bool anyIncoming() const override { return FaceFifoInbox::anyIncoming(net_.incoming_[id_]); }
 
   void sendContribution(const core::Contribution& c) override { sender_.send(c); }
   void flushContributions() override {
@@ -132,7 +122,7 @@ class MpiInterconnect<Real>::Endpoint final : public node::BasicTransport<Real> 
   MpiInterconnect& net_;
   int id_;
   HostChannel<core::Contribution, node::scheduling::kContributionBlock>::Sender sender_;
-  std::size_t next_ = 0;
+  FaceFifoInbox inbox_;
 };
 
 template <class Real>

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "queues/interconnects/face_fifo_inbox.h"
+
 namespace raycube::queues {
 namespace {
 
@@ -52,19 +54,8 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
     pushedTo_.clear();
   }
   bool canSend(int neighbour) const override { return machine_.queue(id_, neighbour)->hasSpace(); }
-  std::size_t receive(std::span<Message> into) override {
-    std::size_t n = 0;
-    const std::size_t count = incoming_.size();
-    for (std::size_t k = 0; k < count && n < into.size(); ++k)
-      n += incoming_[(next_ + k) % count]->tryPopN(into.subspan(n));
-    if (count > 0) next_ = (next_ + 1) % count;  // fairness between neighbours
-    return n;
-  }
-  bool anyIncoming() const override {
-    for (RayQueue* q : incoming_)
-      if (q->hasMessage()) return true;
-    return false;
-  }
+  std::size_t receive(std::span<Message> into) override { return inbox_.receive(incoming_, into); }
+  bool anyIncoming() const override { return FaceFifoInbox::anyIncoming(incoming_); }
 
   void sendContribution(const core::Contribution& c) override { sender_.send(c); }
   void flushContributions() override { sender_.flush(); }
@@ -91,7 +82,7 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
   const std::vector<int>& neighbours_;  // by slot
   ContributionChannel::Sender sender_;
   std::vector<RayQueue*> incoming_;
-  std::size_t next_ = 0;
+  FaceFifoInbox inbox_;
   std::vector<bool> toRing_;           // per neighbour slot: in pushedTo_
   std::vector<std::size_t> pushedTo_;  // the slots of the neighbours sent rays since the last ring
 };

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "host/engines/machine_wire.h"
 #include "host/engines/wire_codec.h"
 #include "host/util/clock.h"
 #include "queues/host_channel.h"
@@ -20,7 +21,6 @@ namespace raycube::host {
 namespace {
 
 namespace s4u = simgrid::s4u;
-static_assert(std::is_trivially_copyable_v<ProcessorReport>);
 
 // ---- The child's results travel to the parent through a pipe, as tagged records.
 enum class Record : std::uint8_t { SynthesisStarts, Contributions, Progress, Reports, Failure };
@@ -98,63 +98,29 @@ std::uint32_t cubeNodesFor(const std::vector<std::uint32_t>& cubeNode) {
 
 std::string hostName(std::uint32_t cubeNode) { return "node-" + std::to_string(cubeNode); }
 
-// The built-in machines as SimGrid platforms: one host per hypercube node and one for the cube manager.
-// Store and forward: a link per direction between hypercube neighbours (the iPSC's seven ports), so a
-// message to a non-neighbour is relayed by the nodes' communication tasks. Direct: each node has one
-// network interface into a switch, and a route to every node it talks to. Every node has its own link to
-// the manager (the iPSC's eighth port).
-void buildPlatform(const EmulatedPlatform& platform, std::uint32_t cubeNodes,
-                   const std::vector<std::pair<std::uint32_t, std::uint32_t>>& talking) {
-  s4u::NetZone* zone = s4u::create_full_zone("machine");
-  std::vector<s4u::Host*> hosts;
-  for (std::uint32_t n = 0; n < cubeNodes; ++n) hosts.push_back(zone->create_host(hostName(n), platform.nodeSpeed));
-  s4u::Host* manager = zone->create_host(queues::kCubeManagerHost, platform.nodeSpeed);
-  auto link = [&](const std::string& name, double bandwidth, double latency) {
-    return zone->create_link(name, bandwidth)->set_latency(latency);
-  };
-  auto route = [&](s4u::Host* a, s4u::Host* b, std::vector<s4u::Link*> links) {
-    std::vector<s4u::LinkInRoute> path;
-    for (s4u::Link* l : links) path.emplace_back(l);
-    zone->add_route(a->get_netpoint(), b->get_netpoint(), nullptr, nullptr, path, false);
-  };
-  for (std::uint32_t n = 0; n < cubeNodes; ++n)
-    route(hosts[n], manager,
-          {link(hostName(n) + "->manager", platform.hostLinkBandwidth, platform.hostLinkLatency)});
-  if (platform.routing == Routing::StoreAndForward) {
-    for (std::uint32_t n = 0; n < cubeNodes; ++n)
-      for (std::uint32_t bit = 1; bit < cubeNodes; bit *= 2)
-        route(hosts[n], hosts[n ^ bit],
-              {link(hostName(n) + "->" + hostName(n ^ bit), platform.linkBandwidth, platform.linkLatency)});
-  } else {
-    std::vector<s4u::Link*> nic;
-    for (std::uint32_t n = 0; n < cubeNodes; ++n)
-      nic.push_back(link(hostName(n) + "-nic", platform.linkBandwidth, platform.linkLatency / 2));
-    for (const auto& [a, b] : talking) route(hosts[a], hosts[b], {nic[a], nic[b]});
-  }
-  zone->seal();
-}
-
-// Who sends to whom: region neighbours, and each processor to the next on the token ring.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> talkingPairs(const node::RegionMap& regions,
-                                                                   const std::vector<std::uint32_t>& cubeNode) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  const int processors = regions.processors();
-  for (int p = 0; p < processors; ++p) {
-    for (int n : regions.neighbours(p)) pairs.emplace_back(cubeNode[p], cubeNode[n]);
-    const int next = (p + 1) % processors;
-    if (next != p && !std::binary_search(regions.neighbours(p).begin(), regions.neighbours(p).end(), next))
-      pairs.emplace_back(cubeNode[p], cubeNode[next]);
-  }
-  return pairs;
-}
-
 s4u::Host* hostNamed(const std::string& name, const EmulatedPlatform& platform) {
   s4u::Host* h = s4u::Engine::get_instance()->host_by_name_or_null(name);
   if (h == nullptr)
-    throw std::runtime_error(fmt::format("platform {}: no host named '{}' (a platform needs node-0 ... node-<2^d - 1> "
-                                         "and manager)",
-                                         platform.name, name));
+    throw std::runtime_error(
+        fmt::format("{}: no host named '{}' (a platform needs node-0 ... node-<2^d - 1> and manager)",
+                    platform.platformFile.string(), name));
   return h;
+}
+
+// Every machine, built in or not, is a SimGrid platform file (host/machine/platforms/ for the built-in ones).
+void loadPlatform(s4u::Engine& engine, const EmulatedPlatform& platform) {
+  try {
+    engine.load_platform(platform.platformFile.string());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(
+        fmt::format("{}: not a usable SimGrid platform: {}", platform.platformFile.string(), e.what()));
+  }
+}
+
+// A cost table's nodeSpeed sets node-0's speed, the others keeping their ratio to it: every charge is scaled
+// (by exactly 1 without one).
+double speedScale(const EmulatedPlatform& platform, const s4u::Host& node0) {
+  return platform.nodeSpeed ? node0.get_speed() / *platform.nodeSpeed : 1.0;
 }
 
 // A processor's state over simulated time, merged where it does not change.
@@ -181,7 +147,8 @@ class Timeline {
 // messages leave when the work that made them is done); wait in simulated time when there is nothing to do.
 template <class Real>
 void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInterconnect<Real>& net, int id,
-                          const CostTable& costs, ProcessorReport& report, std::vector<Timeline>& timelines) {
+                          const CostTable& costs, double speedScale, ProcessorReport& report,
+                          std::vector<Timeline>& timelines) {
   Timeline& timeline = timelines[std::size_t(id)];
   double counted = costs.flopsOf(node.stats());
   for (;;) {
@@ -189,7 +156,7 @@ void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInt
     const double now = costs.flopsOf(node.stats());
     if (now > counted) {
       const double start = s4u::Engine::get_clock();
-      s4u::this_actor::execute(now - counted);
+      s4u::this_actor::execute((now - counted) * speedScale);
       report.computeSeconds += s4u::Engine::get_clock() - start;
       timeline.add(std::uint32_t(id), ProcessorState::Computing, start, s4u::Engine::get_clock());
       counted = now;
@@ -215,30 +182,73 @@ struct SimulationInput {
   const std::vector<std::uint32_t>& cubeNode;
 };
 
+// SimGrid's settings: the CM02 network model without cross-traffic, so that a platform's numbers mean what
+// they say (machines-and-engines.md), and only critical messages.
+std::vector<std::string> simulationArguments() {
+  return {"raycube", "--cfg=network/model:CM02", "--cfg=network/crosstraffic:0", "--log=root.thres:critical"};
+}
+
+// The loaded platform's hosts for the interconnect: node-<n> for each hypercube node, and the manager.
+queues::SimGridWiring wiringFor(const SimulationInput& in) {
+  queues::SimGridWiring wiring;
+  wiring.capacity = in.queueCapacity;
+  wiring.cubeNode = in.cubeNode;
+  const std::uint32_t cubeNodes = cubeNodesFor(in.cubeNode);
+  for (std::uint32_t n = 0; n < cubeNodes; ++n) wiring.hosts.push_back(hostNamed(hostName(n), in.platform));
+  wiring.manager = hostNamed(queues::kCubeManagerHost, in.platform);
+  wiring.routing = in.platform.routing;
+  wiring.relayFlops = in.platform.costs.messageRelayed * speedScale(in.platform, *wiring.hosts[0]);
+  return wiring;
+}
+
+// SimGrid returns from run() on a deadlock as on completion: check that every actor finished.
+void requireCompleted(bool terminated, int finished, int processors, bool hostDone) {
+  if (!terminated || finished != processors || !hostDone)
+    throw std::runtime_error(
+        fmt::format("the simulation deadlocked at {:.6f} simulated s: termination {}, {} of {} processors "
+                    "finished, host {}",
+                    s4u::Engine::get_clock(), terminated ? "announced" : "not announced", finished,
+                    processors, hostDone ? "done" : "still waiting"));
+}
+
+// What the simulation measured: its clock, the traffic on its links and the processors' timelines; the
+// reports take the nodes' counts and the time their hosts spent relaying.
+template <class Real>
+EmulatedRun emulatedRunOf(const SimulationInput& in, const queues::SimGridInterconnect<Real>& net,
+                          const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes,
+                          const s4u::Host& node0, std::vector<ProcessorReport>& reports,
+                          std::vector<Timeline>& timelines) {
+  EmulatedRun run;
+  run.platform = in.platform.name;
+  run.nodeSpeed = in.platform.nodeSpeed.value_or(node0.get_speed());
+  for (std::size_t p = 0; p < nodes.size(); ++p) {
+    reports[p].node = nodes[p]->stats();
+    reports[p].forwardSeconds = net.relaySeconds(in.cubeNode[p]);
+  }
+  for (const queues::LinkTrafficCount& t : net.traffic()) {
+    run.links.push_back({t.from, t.to, t.messages, t.bytes});
+    if (t.to != kHostNode) run.rayMessages += t.messages;
+  }
+  for (Timeline& t : timelines) {
+    auto part = t.take();
+    run.timeline.insert(run.timeline.end(), part.begin(), part.end());
+  }
+  return run;
+}
+
 // The whole simulation, in the child process: results to `out`.
 template <class Real>
 void simulate(SimulationInput in, PipeWriter& out) {
   const auto wallStart = Clock::now();
-  std::vector<std::string> args = {"raycube", "--cfg=network/model:CM02", "--cfg=network/crosstraffic:0",
-                                   "--log=root.thres:critical"};
+  std::vector<std::string> args = simulationArguments();
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   int argc = int(args.size());
   s4u::Engine engine(&argc, argv.data());
-  const std::uint32_t cubeNodes = cubeNodesFor(in.cubeNode);
-  if (in.platform.platformFile.empty())
-    buildPlatform(in.platform, cubeNodes, talkingPairs(in.context.regions, in.cubeNode));
-  else
-    engine.load_platform(in.platform.platformFile.string());
-
-  queues::SimGridWiring wiring;
-  wiring.capacity = in.queueCapacity;
-  wiring.cubeNode = in.cubeNode;
-  for (std::uint32_t n = 0; n < cubeNodes; ++n) wiring.hosts.push_back(hostNamed(hostName(n), in.platform));
-  wiring.manager = hostNamed(queues::kCubeManagerHost, in.platform);
-  wiring.routing = in.platform.routing;
-  wiring.relayFlops = in.platform.costs.messageRelayed;
+  loadPlatform(engine, in.platform);
+  const queues::SimGridWiring wiring = wiringFor(in);
+  const double scale = speedScale(in.platform, *wiring.hosts[0]);
   queues::SimGridInterconnect<Real> net(in.context.regions, wiring);
 
   const int processors = int(in.setups.size());
@@ -251,7 +261,7 @@ void simulate(SimulationInput in, PipeWriter& out) {
   int finished = 0;
   for (int p = 0; p < processors; ++p)
     s4u::Actor::create("processor-" + std::to_string(p), wiring.hosts[in.cubeNode[p]], [&, p] {
-      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, reports[p], timelines);
+      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, scale, reports[p], timelines);
       ++finished;
     });
   ContributionsToParent toParent(out, [&] {
@@ -268,37 +278,14 @@ void simulate(SimulationInput in, PipeWriter& out) {
   });
   net.startCommunicationTasks();
   engine.run();
-  if (!net.terminated() || finished != processors || !hostDone)
-    throw std::runtime_error(fmt::format(
-        "the simulation deadlocked at {:.6f} simulated s: termination {}, {} of {} processors finished, host {}",
-        s4u::Engine::get_clock(), net.terminated() ? "announced" : "not announced", finished, processors,
-        hostDone ? "done" : "still waiting"));
+  requireCompleted(net.terminated(), finished, processors, hostDone);
   toParent.flush();
 
-  EmulatedRun run;
-  run.platform = in.platform.name;
+  EmulatedRun run = emulatedRunOf(in, net, nodes, *wiring.hosts[0], reports, timelines);
   run.makespan = makespan;
-  for (int p = 0; p < processors; ++p) {
-    reports[p].node = nodes[p]->stats();
-    reports[p].forwardSeconds = net.relaySeconds(in.cubeNode[p]);
-  }
-  for (const queues::LinkTrafficCount& t : net.traffic()) {
-    run.links.push_back({t.from, t.to, t.messages, t.bytes});
-    if (t.to != kHostNode) run.rayMessages += t.messages;
-  }
-  for (Timeline& t : timelines) {
-    auto part = t.take();
-    run.timeline.insert(run.timeline.end(), part.begin(), part.end());
-  }
   run.wallSeconds = secondsSince(wallStart);
   out.value(Record::Reports);
-  out.vector(reports);
-  out.string(run.platform);
-  out.value(run.makespan);
-  out.value(run.rayMessages);
-  out.value(run.wallSeconds);
-  out.vector(run.links);
-  out.vector(run.timeline);
+  writeEmulatedResults(out, reports, run);
 }
 
 // The parent's side: the start of synthesis, contributions to the host's sink and progress as they come,
@@ -316,17 +303,7 @@ MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
     } else if (tag == Record::Failure) {
       throw std::runtime_error(in.string());
     } else {
-      MachineRun run;
-      run.processors = in.vector<ProcessorReport>();
-      EmulatedRun s;
-      s.platform = in.string();
-      s.makespan = in.value<double>();
-      s.rayMessages = in.value<std::uint64_t>();
-      s.wallSeconds = in.value<double>();
-      s.links = in.vector<LinkTraffic>();
-      s.timeline = in.vector<StateInterval>();
-      run.emulated = std::move(s);
-      return run;
+      return readEmulatedResults(in);
     }
   }
 }
