@@ -12,6 +12,10 @@
 namespace raycube::node {
 namespace {
 
+// A walk's passes in evaluate(): the front part, the rear part, and one more for an eye ray whose origin
+// rounding put just behind the eye plane (it is in front of the eye wherever its pixel's pyramid is).
+constexpr int kPartsOfALine = 3;
+
 // Test memos for every object the walk can meet, the region's and the rear's: indices up to the largest.
 std::size_t memosFor(const NodeSetup& setup) {
   std::uint32_t end = 0;
@@ -261,8 +265,8 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
   const double tMax = light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
   double transmission = light ? m.transmissionOrAheadT : 1.0;
-  ahead_ =
-      carriesAhead_ && !light && m.ahead != kNothingAhead ? core::Hit{m.transmissionOrAheadT, m.ahead} : core::Hit{};
+  ahead_ = carriesAhead_ && !light && m.ahead != kNothingAhead ? core::Hit{m.transmissionOrAheadT, m.ahead}
+                                                               : core::Hit{};
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
     return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *regionBvh_, hit, transmission)
@@ -280,7 +284,10 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
                  .destination = std::uint16_t(owner),
                  .ahead = light ? kNothingAhead : ahead_.object});
   };
-  for (;;) {
+  // The ray's line has two parts, in front of the eye and behind it (EyeFrameRay::partEnd), so the walk
+  // passes from one to the other at most once; a ray whose numbers are NaN, on which no part ever ends,
+  // still ends here, having met what every test of NaN meets: nothing.
+  for (int part = 0; part < kPartsOfALine; ++part) {
     const double tEnd = std::min(er.partEnd(t), tMax);
     if (!er.inFront(t)) {
       // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
@@ -308,6 +315,7 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
     if (result == WalkResult::Stopped || er.lastPart(t, tMax)) return finishRay(ray, hit, transmission);
     t = tEnd;  // on to the rear part
   }
+  finishRay(ray, hit, transmission);
 }
 
 // Whether the ray's part [t, tMax] misses every object of the scene: it leaves the scene's bounds for good.
