@@ -84,6 +84,14 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
 template <class Real>
 Step LogicalProcessor<Real>::step(int primaries) {
+  stepping_.store(true, std::memory_order_relaxed);
+  const Step done = stepOnce(primaries);
+  stepping_.store(false, std::memory_order_relaxed);
+  return done;
+}
+
+template <class Real>
+Step LogicalProcessor<Real>::stepOnce(int primaries) {
   if (transport_.terminated()) return Step::Terminated;
   bool progressed = flushOverflow();
   const std::size_t n = transport_.receive(inbox_);
@@ -129,6 +137,19 @@ void LogicalProcessor<Real>::reportBacklog() {
 template <class Real>
 void LogicalProcessor<Real>::publishProgress() {
   segmentsEvaluated_.store(stats_.processed.totalRays(), std::memory_order_relaxed);
+  raySteps_.store(raySteps_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+}
+
+template <class Real>
+std::string LogicalProcessor<Real>::describeHeldWork() const {
+  std::string held;
+  auto add = [&](const std::string& what) { held += (held.empty() ? "" : ", ") + what; };
+  const long long primaries = area_.count() * context_.view.raysPerSample() - nextPrimary_;
+  if (primaries > 0) add(std::to_string(primaries) + " primary rays to shoot");
+  if (!local_.empty()) add(std::to_string(local_.size()) + " rays of its own to trace");
+  if (backlog() > 0) add(std::to_string(backlog()) + " rays waiting for room in a neighbour's FIFO");
+  if (termination_.holdsToken()) add("the termination token");
+  return held.empty() ? "nothing" : held;
 }
 
 template <class Real>
