@@ -41,14 +41,19 @@ std::vector<std::pair<std::string, MachineSettings>> machines() {
           {"2x2 uniform, paper cells", paper}};
 }
 
-void expectEveryModeDrawsTheReference(const core::Scene& scene, core::Precision precision) {
-  const RenderSettings settings = sixteen(precision);
-  const core::Image reference = renderReference(scene, settings).image;
-  EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, settings).image, reference)) << "image-parallel";
-  for (const auto& [label, machine] : machines()) {
-    MachineReport report;
-    const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
-    EXPECT_TRUE(core::bitIdentical(result.image, reference)) << label;
+// In both precisions, at 16x16.
+void expectEveryModeDrawsTheReference(const core::Scene& scene) {
+  for (const core::Precision precision : {core::Precision::Float, core::Precision::Double}) {
+    SCOPED_TRACE(core::nameOf(precision));
+    const RenderSettings settings = sixteen(precision);
+    const core::Image reference = renderReference(scene, settings).image;
+    EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, settings).image, reference))
+        << "image-parallel";
+    for (const auto& [label, machine] : machines()) {
+      MachineReport report;
+      const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
+      EXPECT_TRUE(core::bitIdentical(result.image, reference)) << label;
+    }
   }
 }
 
@@ -59,10 +64,7 @@ TEST(HostileScenes, ALightRayOfNaNEndsInEveryMode) {
       "v\nfrom 1 3 7\nat 0 0 0\nup 0 0 1\nangle 45\nhither 0\nresolution 3 2\nl 1 -4  5\n"
       "f 1 0 3 0 5 7 0 1\ns 0 0 0 5\ns 4 0 .5 60617284",
       "nan_light_ray.nff");
-  for (const core::Precision precision : {core::Precision::Float, core::Precision::Double}) {
-    SCOPED_TRACE(core::nameOf(precision));
-    expectEveryModeDrawsTheReference(scene, precision);
-  }
+  expectEveryModeDrawsTheReference(scene);
 }
 
 // Class 2: a quadrilateral whose fourth vertex leaves the plane of the others (NFF files carry such
@@ -89,10 +91,7 @@ TEST(HostileScenes, ANonPlanarPolygonIsHitAlikeInEveryMode) {
       EXPECT_TRUE(box.holds(ray.at(t))) << "hit off the box towards " << i << ", " << j;
     }
   EXPECT_GT(hits, 100);
-  for (const core::Precision precision : {core::Precision::Float, core::Precision::Double}) {
-    SCOPED_TRACE(core::nameOf(precision));
-    expectEveryModeDrawsTheReference(scene, precision);
-  }
+  expectEveryModeDrawsTheReference(scene);
 }
 
 // Found by the structure-aware campaign: a cylinder 37,708 units long and 0.07 wide, seen in float near one
@@ -105,10 +104,7 @@ TEST(HostileScenes, ALongThinFloatCylinderIsHitAlikeInEveryMode) {
       "p 4\n2.27965 5.22625 3.77965\n-4.27965 5.22625 3.77965\n-4.27965 5.22625 -2.77965\n"
       "2.27965 5.22625 -2.77965\nc 37708.496896 1.7277 0 0.07412 -0.753191 2.0659 0 0.07412\n",
       "long_cylinder.nff");
-  for (const core::Precision precision : {core::Precision::Float, core::Precision::Double}) {
-    SCOPED_TRACE(core::nameOf(precision));
-    expectEveryModeDrawsTheReference(scene, precision);
-  }
+  expectEveryModeDrawsTheReference(scene);
 }
 
 // The watchdog: a machine that loses its termination token never terminates; it must end with an error
