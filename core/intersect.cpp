@@ -7,6 +7,7 @@
 
 #include "core/overloaded.h"
 #include "core/polygon_outline.h"
+#include "core/precision.h"
 
 namespace raycube::core {
 namespace {
@@ -91,8 +92,9 @@ TriangleHit<Real> hitFan(std::span<const Vec3> vertices, const BasicRay<Real>& r
   return best;
 }
 
-// A polygon of more than three corners: its plane, then the even-odd rule on its outline at the point met. The plane and t are
-// in Real; the point's coordinates go to the outline as they are (a float converts exactly to double).
+// A polygon of more than three corners: its plane, then the even-odd rule on its outline at the point met.
+// The plane and t are in Real; the point's coordinates go to the outline as they are (a float converts
+// exactly to double).
 template <class Real>
 Real hitOutline(const PolygonOutline& outline, const BasicRay<Real>& ray, Real tMax) {
   const V<Real> normal(outline.normal());
@@ -105,7 +107,8 @@ Real hitOutline(const PolygonOutline& outline, const BasicRay<Real>& ray, Real t
 
 template <class Real>
 Real hitPolygon(const Polygon& polygon, const BasicRay<Real>& ray, Real tMax) {
-  return polygon.outline ? hitOutline(*polygon.outline, ray, tMax) : hitFan(polygon.vertices, ray, tMax, nullptr).t;
+  return polygon.outline ? hitOutline(*polygon.outline, ray, tMax)
+                         : hitFan(polygon.vertices, ray, tMax, nullptr).t;
 }
 
 // Open cone or cylinder about the axis base->apex; radius varies linearly r(s) = r0 + k s, 0 <= s <= h.
@@ -126,6 +129,26 @@ ConeFrame<Real> frameOf(const Cone& c) {
 // ray's own origin, c = |wo|^2 - ro^2 cancels catastrophically when the origin lies far off compared with
 // the radius (a float ray 23 units from a jacks cylinder of radius 0.019 "hit" it 6% of the radius outside
 // its bounding box, which a BVH then culled: answers depending on the structure).
+// Each end disc lies within a cube of its radius about its centre.
+Box coneBounds(const Cone& c) {
+  Box box;
+  const double r0 = std::abs(c.baseRadius), r1 = std::abs(c.apexRadius);
+  box.extend(c.base - Vec3(r0));
+  box.extend(c.base + Vec3(r0));
+  box.extend(c.apex - Vec3(r1));
+  box.extend(c.apex + Vec3(r1));
+  return box;
+}
+
+// Far along a long cone from its middle (a cylinder 37,708 units long and 0.07 wide, in float), even the
+// shifted quadratic cancels to noise, and a root may lie off the cone and its box: a BVH culled what the
+// reference's brute force returned. A root is a hit only inside the box every structure tests (padded as
+// the BVH's for this precision), so every mode answers alike; on any real cone's surface it always is.
+template <class Real>
+bool withinConeBox(const Cone& cone, const V<Real>& point) {
+  return coneBounds(cone).padded(kBoxPaddingRelativeOf<Real>).holds(Vec3(point));
+}
+
 template <class Real>
 Real hitCone(const Cone& cone, const BasicRay<Real>& ray, Real tMax) {
   const ConeFrame<Real> f = frameOf<Real>(cone);
@@ -155,7 +178,8 @@ Real hitCone(const Cone& cone, const BasicRay<Real>& ray, Real tMax) {
     const Real t = tShift + tFromShift;
     if (!(t > ray.tMin && t < tMax)) continue;
     const Real s = so + tFromShift * sd;
-    if (s >= 0 && s <= f.height && f.baseRadius + f.slope * s >= 0) return t;
+    if (s >= 0 && s <= f.height && f.baseRadius + f.slope * s >= 0 && withinConeBox(cone, ray.at(t)))
+      return t;
   }
   return kNone<Real>;
 }
@@ -228,25 +252,17 @@ template BasicSurfacePoint<double> surfaceAt(const Object&, const BasicRay<doubl
 
 Box boundsOf(const Object& object, double paddingRelative) {
   Box box;
-  std::visit(Overloaded{[&](const Sphere& s) {
-                          box.extend(s.center - Vec3(s.radius));
-                          box.extend(s.center + Vec3(s.radius));
-                        },
-                        [&](const Cone& c) {
-                          // Each end disc lies within a cube of its radius about its centre.
-                          const double r0 = std::abs(c.baseRadius), r1 = std::abs(c.apexRadius);
-                          box.extend(c.base - Vec3(r0));
-                          box.extend(c.base + Vec3(r0));
-                          box.extend(c.apex - Vec3(r1));
-                          box.extend(c.apex + Vec3(r1));
-                        },
-                        [&](const Polygon& p) {
-                          for (const Vec3& v : p.vertices) box.extend(v);
-                        },
-                        [&](const Patch& p) {
-                          for (const Vec3& v : p.vertices) box.extend(v);
-                        }},
-             object.shape);
+  std::visit(
+      Overloaded{[&](const Sphere& s) {
+                   box.extend(s.center - Vec3(s.radius));
+                   box.extend(s.center + Vec3(s.radius));
+                 },
+                 [&](const Cone& c) { box = coneBounds(c); },
+                 [&](const Polygon& p) { forEachBoundingPoint(p, [&](const Vec3& v) { box.extend(v); }); },
+                 [&](const Patch& p) {
+                   for (const Vec3& v : p.vertices) box.extend(v);
+                 }},
+      object.shape);
   return box.padded(paddingRelative);
 }
 

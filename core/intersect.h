@@ -3,10 +3,12 @@
 // there. Pure functions of (ray, object), so every renderer and every node finds the same t. Written once
 // over the ray's precision Real (float or double): the object's double coordinates are rounded to Real and
 // all the arithmetic is done in Real.
+#include <cmath>
 #include <cstdint>
 #include <type_traits>
 
 #include "core/box.h"
+#include "core/polygon_outline.h"
 #include "core/ray.h"
 #include "core/scene.h"
 #include "core/trace_stats.h"
@@ -32,6 +34,18 @@ BasicSurfacePoint<Real> surfaceAt(const Object& object, const BasicRay<Real>& ra
 
 // World-space bounding box of the object, padded by paddingRelative of its size and magnitude.
 Box boundsOf(const Object& object, double paddingRelative);
+
+// visit(point) for each point whose box bounds every hit on the polygon: its vertices and, for one tested on
+// its plane (an outline), the plane's points over them. When the vertices leave the plane (an NFF file's
+// rounding, or worse) the hits do too; every structure built on boxes (BVHs, cells, regions) must hold them
+// where the reference's brute force finds them. A plane of NaN (collinear vertices) is hit nowhere.
+template <class Visit>
+void forEachBoundingPoint(const Polygon& polygon, Visit&& visit) {
+  for (const Vec3& v : polygon.vertices) visit(v);
+  if (polygon.outline)
+    for (const Vec3& v : polygon.vertices)
+      if (const Vec3 p = polygon.outline->onPlane(v); std::isfinite(p.x + p.y + p.z)) visit(p);
+}
 
 // Closest hit of a ray among candidates: smallest t, ties broken by the smaller object index, so that
 // any traversal order, any acceleration structure and any partition of space choose the same object.

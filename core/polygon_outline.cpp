@@ -72,6 +72,13 @@ PolygonOutline::PolygonOutline(const std::vector<Vec3>& vertices) {
     for (std::size_t b = bandOf(e.y0); b <= bandOf(e.y1); ++b) edges_[filled[b]++] = e;
 }
 
+Vec3 PolygonOutline::onPlane(const Vec3& v) const {
+  const int dropped = 3 - xAxis_ - yAxis_;
+  Vec3 p = v;
+  p[dropped] = (offset_ - normal_[xAxis_] * v[xAxis_] - normal_[yAxis_] * v[yAxis_]) / normal_[dropped];
+  return p;
+}
+
 // Monotone in y (a subtraction and a product by positive constants, rounded, then floored and clamped), so
 // y0 <= y <= y1 puts y's band between y0's and y1's.
 std::size_t PolygonOutline::bandOf(double y) const {

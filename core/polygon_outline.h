@@ -1,11 +1,11 @@
 #pragma once
 // The inside of a polygon, concave or convex, answered in time about constant in its vertex count. NFF's
 // "p" may be concave (SPD gears writes its gear faces as 144-vertex outlines with the teeth cut in); a fan of
-// triangles around vertex 0 covers such a polygon's notches too, and tests every vertex. The outline instead holds the
-// polygon in its own plane, dropped onto the two axes its normal is least along, with its edges sorted into
-// horizontal bands of equal height: a point's band lists every edge whose height range contains the point's,
-// and the even-odd rule (the crossing number of a half-line towards +x, as POV-Ray's polygon) decides on
-// those edges only.
+// triangles around vertex 0 covers such a polygon's notches too, and tests every vertex. The outline instead
+// holds the polygon in its own plane, dropped onto the two axes its normal is least along, with its edges
+// sorted into horizontal bands of equal height: a point's band lists every edge whose height range contains
+// the point's, and the even-odd rule (the crossing number of a half-line towards +x, as POV-Ray's polygon)
+// decides on those edges only.
 //
 // Exact: the answer is that of the crossing test over all the edges, on every point. Band lookup and edge
 // ranges go through the same monotone function of height, so an edge that spans a point's height is always
@@ -28,6 +28,10 @@ class PolygonOutline {
   // outlines), its sign following the vertex order.
   const Vec3& normal() const { return normal_; }
   double offset() const { return offset_; }
+
+  // The point of the plane over v's plane coordinates. Hits lie on the plane, so when the vertices leave
+  // it (an NFF file's rounding, or worse) the box of these points, not of the vertices, bounds them.
+  Vec3 onPlane(const Vec3& v) const;
 
   // Whether a point of the plane lies inside by the even-odd rule (a point of the polygon's plane; the
   // component along the dropped axis is ignored).

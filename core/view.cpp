@@ -10,6 +10,23 @@
 
 namespace raycube::core {
 
+namespace {
+
+// v itself, unless its squared length overflows or underflows (an 'up' of 1e300): then v scaled by its
+// largest component. Normalised as it was, such a vector gave a zero frame, every eye ray the same, and the
+// machine's regions nothing to split (issue 41). Every other camera's frame is computed exactly as ever.
+Vec3 tamed(const Vec3& v) {
+  const double squared = glm::dot(v, v);
+  if (std::isfinite(squared) && squared > 0x1p-900) return v;
+  const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  return largest > 0 && std::isfinite(largest) ? v / largest : v;
+}
+Vec3 directionOf(const Vec3& v) {
+  return glm::normalize(tamed(v));
+}
+
+}  // namespace
+
 View::View(const Camera& camera, int width, int height, Sampling sampling, int raysPerSample)
     : width_(width),
       height_(height),
@@ -23,8 +40,8 @@ View::View(const Camera& camera, int width, int height, Sampling sampling, int r
   samplesX_ = width + (corners ? 1 : 0);
   samplesY_ = height + (corners ? 1 : 0);
   offsetPixels_ = corners ? 0.5 : 0.0;
-  forward_ = glm::normalize(camera.at - camera.from);
-  right_ = glm::normalize(glm::cross(forward_, camera.up));
+  forward_ = directionOf(camera.at - camera.from);
+  right_ = directionOf(glm::cross(forward_, tamed(camera.up)));
   up_ = glm::cross(right_, forward_);
   // NFF: angle spans the centres of the outer pixel rows/columns; pixels are square (aspect 1).
   const double span = 2 * std::tan(camera.angleDegrees * std::numbers::pi / 360.0);

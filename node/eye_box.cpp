@@ -23,7 +23,7 @@ EyeBox eyeBoxOf(const core::Object& object, const core::View& view, double scene
     box.extend(c - core::Vec3(sphere->radius));
     box.extend(c + core::Vec3(sphere->radius));
   } else if (const auto* polygon = std::get_if<core::Polygon>(&object.shape)) {
-    for (const core::Vec3& v : polygon->vertices) box.extend(eyeFramePoint(view, v));
+    core::forEachBoundingPoint(*polygon, [&](const core::Vec3& v) { box.extend(eyeFramePoint(view, v)); });
   } else if (const auto* patch = std::get_if<core::Patch>(&object.shape)) {
     for (const core::Vec3& v : patch->vertices) box.extend(eyeFramePoint(view, v));
   } else {

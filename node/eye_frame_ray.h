@@ -77,8 +77,9 @@ struct EyeFrameRay {
     return (d.z != 0 && tz > t) ? tz : core::kInfinity;
   }
   // Whether the part containing t is the last the ray's interval [.., tMax] reaches: nothing is traced
-  // beyond it, whether tMax or the end of the line ends it.
-  bool lastPart(double t, double tMax) const { return partEnd(t) >= tMax; }
+  // beyond it, whether tMax or the end of the line ends it. A NaN tMax (a ray of garbage numbers) ends
+  // every part: a walk that asked for one more would ask again forever.
+  bool lastPart(double t, double tMax) const { return !(partEnd(t) < tMax); }
 };
 
 }  // namespace raycube::node

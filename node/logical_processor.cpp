@@ -12,6 +12,10 @@
 namespace raycube::node {
 namespace {
 
+// A walk's passes in evaluate(): the front part, the rear part, and one more for an eye ray whose origin
+// rounding put just behind the eye plane (it is in front of the eye wherever its pixel's pyramid is).
+constexpr int kPartsOfALine = 3;
+
 // Test memos for every object the walk can meet, the region's and the rear's: indices up to the largest.
 std::size_t memosFor(const NodeSetup& setup) {
   std::uint32_t end = 0;
@@ -79,6 +83,14 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
 // 3.5.2: received rays first, then more primary rays; the token moves only in the second phase.
 template <class Real>
 Step LogicalProcessor<Real>::step(int primaries) {
+  stepping_.store(true, std::memory_order_relaxed);
+  const Step done = stepOnce(primaries);
+  stepping_.store(false, std::memory_order_relaxed);
+  return done;
+}
+
+template <class Real>
+Step LogicalProcessor<Real>::stepOnce(int primaries) {
   if (transport_.terminated()) return Step::Terminated;
   bool progressed = flushOverflow();
   const std::size_t n = transport_.receive(inbox_);
@@ -124,6 +136,19 @@ void LogicalProcessor<Real>::reportBacklog() {
 template <class Real>
 void LogicalProcessor<Real>::publishProgress() {
   segmentsEvaluated_.store(stats_.processed.totalRays(), std::memory_order_relaxed);
+  raySteps_.store(raySteps_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+}
+
+template <class Real>
+std::string LogicalProcessor<Real>::describeHeldWork() const {
+  std::string held;
+  auto add = [&](const std::string& what) { held += (held.empty() ? "" : ", ") + what; };
+  const long long primaries = area_.count() * context_.view.raysPerSample() - nextPrimary_;
+  if (primaries > 0) add(std::to_string(primaries) + " primary rays to shoot");
+  if (!local_.empty()) add(std::to_string(local_.size()) + " rays of its own to trace");
+  if (backlog() > 0) add(std::to_string(backlog()) + " rays waiting for room in a neighbour's FIFO");
+  if (termination_.holdsToken()) add("the termination token");
+  return held.empty() ? "nothing" : held;
 }
 
 template <class Real>
@@ -260,8 +285,8 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
   const double tMax = light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
   double transmission = light ? m.transmissionOrAheadT : 1.0;
-  ahead_ =
-      carriesAhead_ && !light && m.ahead != kNothingAhead ? core::Hit{m.transmissionOrAheadT, m.ahead} : core::Hit{};
+  ahead_ = carriesAhead_ && !light && m.ahead != kNothingAhead ? core::Hit{m.transmissionOrAheadT, m.ahead}
+                                                               : core::Hit{};
   double t = m.tEnter;
   auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
     return structure_ == CellStructure::Bvh ? visitInterval(ray, ta, tb, *regionBvh_, hit, transmission)
@@ -279,7 +304,10 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
                  .destination = std::uint16_t(owner),
                  .ahead = light ? kNothingAhead : ahead_.object});
   };
-  for (;;) {
+  // The ray's line has two parts, in front of the eye and behind it (EyeFrameRay::partEnd), so the walk
+  // passes from one to the other at most once; a ray whose numbers are NaN, on which no part ever ends,
+  // still ends here, having met what every test of NaN meets: nothing.
+  for (int part = 0; part < kPartsOfALine; ++part) {
     const double tEnd = std::min(er.partEnd(t), tMax);
     if (!er.inFront(t)) {
       // Behind the eye plane: every node holds these objects, so the ray's rear part is traced right here.
@@ -307,6 +335,7 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
     if (result == WalkResult::Stopped || er.lastPart(t, tMax)) return finishRay(ray, hit, transmission);
     t = tEnd;  // on to the rear part
   }
+  finishRay(ray, hit, transmission);
 }
 
 // Whether the ray's part [t, tMax] misses every object of the scene: it leaves the scene's bounds for good.

@@ -5,9 +5,10 @@
 // the termination token.
 #include <array>
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <optional>
-#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/bvh.h"
@@ -18,11 +19,11 @@
 #include "core/whitted.h"
 #include "node/database_bvh.h"
 #include "node/light_sources.h"
+#include "node/machine_context.h"
 #include "node/overflow_list.h"
 #include "node/region_cells.h"
 #include "node/region_database.h"
 #include "node/region_map.h"
-#include "node/machine_context.h"
 #include "node/safra_termination.h"
 #include "node/transport.h"
 
@@ -33,10 +34,10 @@ namespace raycube::node {
 // (an engine sending a setup to another address space sends the database's value).
 struct NodeSetup {
   int id = 0;
-  CellStructure cells = CellStructure::Auto;  // the paper's cells or a BVH (Auto: a BVH, chosenFor)
-  int cellLevel = 2;                       // recursive halvings of the pixel area (super-cells)
+  CellStructure cells = CellStructure::Auto;       // the paper's cells or a BVH (Auto: a BVH, chosenFor)
+  int cellLevel = 2;                               // recursive halvings of the pixel area (super-cells)
   std::shared_ptr<const RegionDatabase> database;  // the only objects this processor holds
-  std::vector<std::uint32_t> objects;      // objects touching the region (pruned by the host)
+  std::vector<std::uint32_t> objects;              // objects touching the region (pruned by the host)
   std::vector<EyeBox> objectBoxes;         // the eye box of each of `objects`: the cells are cut from them
   std::vector<std::uint32_t> rearObjects;  // objects reaching behind the eye plane, held by every node
   // 3.7.2: with light cones or pyramids, the eye-frame box this region's light rays start in; the database
@@ -109,6 +110,13 @@ class LogicalProcessor {
   // Ray segments evaluated here (stats().processed.totalRays()) as of the last step that worked; safe to
   // read from another thread: the host's progress.
   std::uint64_t segmentsEvaluated() const { return segmentsEvaluated_.load(std::memory_order_relaxed); }
+  // For an engine's watchdog (host/engines/stall_watch.h), safe to read from another thread: steps that
+  // moved rays (shot, received, evaluated or sent one) so far, and whether a step is under way now.
+  std::uint64_t raySteps() const { return raySteps_.load(std::memory_order_relaxed); }
+  bool stepping() const { return stepping_.load(std::memory_order_relaxed); }
+  // What the processor still holds (primaries, local rays, rays for full FIFOs, the token), for the error
+  // a stalled machine ends with; read once its driver has stopped stepping it.
+  std::string describeHeldWork() const;
 
  private:
   // Synthesis task
@@ -119,7 +127,8 @@ class LogicalProcessor {
   void evaluate(const Message& message, bool primary);
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
-  void shade(const TracedRay& ray, const core::Hit& hit, double transmission, core::BasicRayOutcome<Real>& outcome);
+  void shade(const TracedRay& ray, const core::Hit& hit, double transmission,
+             core::BasicRayOutcome<Real>& outcome);
   bool startsInLightSourceBox(const core::Vec3& eyeFrameOrigin) const;
   double traceWhereItStarts(const TracedRay& ray);
   bool beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const;
@@ -136,6 +145,7 @@ class LogicalProcessor {
   std::size_t slotOf(int neighbour) const;
   bool flushOverflow();
   void onReceived(const Message& message);
+  Step stepOnce(int primaries);
   Step idleStep();
   void countToken();  // the token's visits and rounds into stats_
   void publishProgress();
@@ -160,6 +170,8 @@ class LogicalProcessor {
   long long nextPrimary_ = 0;
   std::size_t reportedBacklog_ = 0;                  // backlog() as last told the transport (countWaiting)
   std::atomic<std::uint64_t> segmentsEvaluated_{0};  // written by this node only, once per step that worked
+  std::atomic<std::uint64_t> raySteps_{0};           // likewise
+  std::atomic<bool> stepping_{false};                // inside step()
   // Rays spawned here that start in this region, still to evaluate here: not messages, so that the message
   // each becomes is built field by field where evaluate reads it. A message built so and then copied whole
   // is read in 16-byte pieces before its narrower stores have left the store buffer, and waits for them:
@@ -171,11 +183,11 @@ class LogicalProcessor {
   std::vector<Message> inbox_;
   core::BasicRayOutcome<Real> outcome_;
   core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
-  // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again in a later cell of the same ray is not tested
-  // again. The cached t is the object's nearest hit over the whole ray, the very number the reference
-  // renderer computes. Only up to the largest index the walk can meet (a processor reading the whole scene
-  // in place would otherwise hold 12 bytes per scene object, even in an empty region),
-  // and none with a BVH, which needs none.
+  // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again
+  // in a later cell of the same ray is not tested again. The cached t is the object's nearest hit over the
+  // whole ray, the very number the reference renderer computes. Only up to the largest index the walk can
+  // meet (a processor reading the whole scene in place would otherwise hold 12 bytes per scene object, even
+  // in an empty region), and none with a BVH, which needs none.
   std::vector<std::uint32_t> memoStamp_;
   std::vector<double> memoT_;
   std::uint32_t rayStamp_ = 0;

@@ -25,7 +25,8 @@ enum class WalkResult : std::uint8_t { Stopped, Finished, Exited };
 // How a region organises its objects. Paper: the cells of 3.3. Bvh: one cell spanning the whole region (its
 // pyramid still bounds the ray's interval), whose objects a BVH visits: the paper's cells suit a few
 // objects, their depth cuts explode on thousands, a BVH's cost grows about logarithmically. Auto: a BVH in
-// every region on real cores; the host gives the emulated machine the paper's cells (host/machine/machine_settings.h).
+// every region on real cores; the host gives the emulated machine the paper's cells
+// (host/machine/machine_settings.h).
 enum class CellStructure : std::uint8_t { Auto, Paper, Bvh };
 
 // Auto on real cores. Until a region of one cell walked in one pass (RegionCells::walkOneCell), the paper's
@@ -153,12 +154,16 @@ WalkResult RegionCells::walkColumns(const EyeFrameRay& ray, double t, double tEn
       if (tCell > t && !col.cellObjects[k].empty() && !visit(t, tCell, col.cellObjects[k]))
         return WalkResult::Stopped;
       t = tCell;
-      if (t >= tColumn) break;
+      // Past the column's last cell along z the interval would end at tColumn: only a NaN gets here.
+      if (t >= tColumn || k + zDir < 0 || k + zDir > int(splits.size())) break;
       k += zDir;
     }
     if (tEnd <= tS && tEnd <= tQ) return WalkResult::Finished;
     const int di = (tS == tColumn || tS <= t) && sDir != 0 ? sDir : 0;
     const int dj = (tQ == tColumn || tQ <= t) && qDir != 0 ? qDir : 0;
+    // No face crossed yet the interval not ended: a NaN in t or tEnd. Moving nowhere, the walk would loop;
+    // it ends as a NaN's tests end, having met nothing more.
+    if (di == 0 && dj == 0) return WalkResult::Finished;
     const int ni = i + di, nj = j + dj;
     const bool leaves = ni < 0 || ni >= columnsX_ || nj < 0 || nj >= int(bounds_[1].size()) - 1;
     if (leaves) {

@@ -7,6 +7,10 @@
 #include <unistd.h>
 
 #include <climits>
+#include <ctime>
+#else
+#include <algorithm>
+#include <thread>
 #endif
 
 namespace raycube::queues {
@@ -30,6 +34,14 @@ void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noex
           nullptr, 0);
 }
 
+void sleepWhileFor(const std::atomic<std::uint32_t>& word, std::uint32_t seen,
+                   std::chrono::nanoseconds timeout) noexcept {
+  const long long ns = timeout.count();
+  const timespec relative{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+  syscall(SYS_futex, reinterpret_cast<const std::uint32_t*>(&word), FUTEX_WAIT_PRIVATE, seen, &relative,
+          nullptr, 0);
+}
+
 void wakeAll(std::atomic<std::uint32_t>& word) noexcept {
   syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, INT_MAX, nullptr, nullptr,
           0);
@@ -37,6 +49,13 @@ void wakeAll(std::atomic<std::uint32_t>& word) noexcept {
 #else
 void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noexcept {
   word.wait(seen, std::memory_order_acquire);
+}
+
+// std::atomic::wait cannot time out: a short nap, the caller re-checking.
+void sleepWhileFor(const std::atomic<std::uint32_t>& word, std::uint32_t seen,
+                   std::chrono::nanoseconds timeout) noexcept {
+  if (word.load(std::memory_order_acquire) == seen)
+    std::this_thread::sleep_for(std::min(timeout, std::chrono::nanoseconds(1000000)));
 }
 
 void wakeAll(std::atomic<std::uint32_t>& word) noexcept {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 
 #include "queues/cache_line.h"
@@ -19,6 +20,9 @@ bool asymmetricFencesAvailable();
 // sched_yield calls before its futex), on top of the processors' own wait (WaitPolicy): many of a busy
 // run's yields, each a system call that switched threads.
 void sleepWhile(const std::atomic<std::uint32_t>& word, std::uint32_t seen) noexcept;
+// The same, waking after `timeout` at the latest (a watchdog's look at a machine that may have stalled).
+void sleepWhileFor(const std::atomic<std::uint32_t>& word, std::uint32_t seen,
+                   std::chrono::nanoseconds timeout) noexcept;
 void wakeAll(std::atomic<std::uint32_t>& word) noexcept;
 
 // One doorbell per logical processor: every queue that feeds the processor rings it, and the processor
@@ -53,6 +57,24 @@ class Doorbell {
       sleepWhile(epoch_, seen);
     }
     sleepers_.fetch_sub(1, std::memory_order_relaxed);
+  }
+
+  // As sleepUntil, but returns after about `timeout` even if ready() does not hold: whether it holds.
+  template <class Ready>
+  bool sleepUntilFor(Ready&& ready, std::chrono::nanoseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    sleepers_.fetch_add(1, std::memory_order_relaxed);
+    heavyFence();
+    bool holds = false;
+    for (;;) {
+      const std::uint32_t seen = epoch_.load(std::memory_order_acquire);
+      if ((holds = ready())) break;
+      const auto left = deadline - std::chrono::steady_clock::now();
+      if (left <= std::chrono::nanoseconds(0)) break;
+      sleepWhileFor(epoch_, seen, left);
+    }
+    sleepers_.fetch_sub(1, std::memory_order_relaxed);
+    return holds;
   }
 
   FenceMode fenceMode() const { return asymmetric_ ? FenceMode::kAsymmetric : FenceMode::kSymmetric; }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <thread>
 
 #include "queues/doorbell.h"
@@ -42,6 +43,21 @@ void waitUntil(Doorbell* bell, Ready&& ready, const WaitPolicy& policy = {}) {
 template <class Ready>
 void waitUntil(Doorbell& bell, Ready&& ready, const WaitPolicy& policy = {}) {
   waitUntil(&bell, ready, policy);
+}
+
+// As waitUntil on a bell, giving up after about `timeout`: whether ready() holds.
+template <class Ready>
+bool waitUntilFor(Doorbell& bell, Ready&& ready, std::chrono::nanoseconds timeout,
+                  const WaitPolicy& policy = {}) {
+  for (int i = 0; i < policy.spins; ++i) {
+    if (ready()) return true;
+    cpuRelax();
+  }
+  for (int i = 0; i < policy.yields; ++i) {
+    if (ready()) return true;
+    std::this_thread::yield();
+  }
+  return bell.sleepUntilFor(ready, timeout);
 }
 
 }  // namespace raycube::queues

@@ -10,7 +10,8 @@ std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings,
                                                 const std::vector<std::uint32_t>& hypercubeNode) {
   if (settings.mpi || settings.emulate) return engineModule().make<Real>(settings, hypercubeNode);
   return std::make_unique<ThreadedMachine<Real>>(fifoRaysFor(settings), settings.jitterSeed,
-                                                 settings.backlogLimit);
+                                                 settings.backlogLimit, settings.stallPeriod,
+                                                 settings.loseTheTokenForTests);
 }
 
 template std::unique_ptr<MachineEngine<float>> makeEngine<float>(const MachineSettings&,

@@ -2,6 +2,7 @@
 // What a user asks of the message-passing machine (Priol & Bouatouch section 3): how many processors, how
 // the screen is partitioned among them (3.1, 3.7.1), their FIFOs (3.5.2), cells (3.3) and light rays
 // (3.7.2), and which engine drives them.
+#include <chrono>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,7 +23,8 @@ enum class LoadMetric : std::uint8_t {
 };
 
 enum class Balance : std::uint8_t {
-  Auto,     // whichever of the two the sub-sampled estimate says finishes first (host/prepare/screen_partition.h)
+  Auto,     // whichever of the two the sub-sampled estimate says finishes first
+            // (host/prepare/screen_partition.h)
   Uniform,  // 3.1: an R x C grid of equal pixel areas
   Bsp,      // 3.7.1: a BSP of the screen into areas of equal estimated load
 };
@@ -39,21 +41,28 @@ struct MachineSettings {
   int rows = 4;
   int columns = 4;
   Balance balance = Balance::Auto;  // with Bsp only rows x columns (the processor count) matters
-  int subsampleWindow = 8;         // 3.7.1: one sub-sampled pixel per w x w window
+  int subsampleWindow = 8;          // 3.7.1: one sub-sampled pixel per w x w window
   LoadMetric loadMetric = LoadMetric::Cost;
   // Rays per face FIFO (3.5.2); none: the engine's own (fifoRaysFor).
   std::optional<std::size_t> queueCapacity;
   // How each region holds its objects. Auto: a BVH in every region (node::chosenFor), but the paper's
   // cells whenever the machine is emulated, whose costs were fitted to them (table 2).
   node::CellStructure cells = node::CellStructure::Auto;
-  int cellLevel = 2;                // recursive halvings of each pixel area into super-cells (3.3)
+  int cellLevel = 2;  // recursive halvings of each pixel area into super-cells (3.3)
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
   unsigned jitterSeed = 0;  // tests: > 0 injects random delays around every transport operation
+  // The engines' watchdog (host/engines/stall_watch.h): a machine in which no processor finished a ray or
+  // moved a message for this long has stalled, an error. Far beyond any step of a legitimate run (one
+  // primary ray's local ray tree: milliseconds, seconds under the sanitizers); tests shorten it.
+  std::chrono::milliseconds stallPeriod{120000};
+  // Tests of the watchdog: the processor that would pass the termination token drops it instead.
+  bool loseTheTokenForTests = false;
   // Threads: rays waiting for room machine-wide from which no primary ray is shot (node::scheduling::
   // kMachineBacklogLimit); tests lower it to hold primaries back often.
   std::size_t backlogLimit = node::scheduling::kMachineBacklogLimit;
   std::optional<EmulatedPlatform> emulate;  // set: run on SimGrid in that machine's simulated time
-  bool mpi = false;         // run the processors on the other ranks of MPI_COMM_WORLD (host/engines/mpi/mpi_machine.h)
+  bool mpi =
+      false;  // run the processors on the other ranks of MPI_COMM_WORLD (host/engines/mpi/mpi_machine.h)
   std::size_t rayBatch = 16;  // MPI: rays per message to one rank, at most
   // Embed the regions in the hypercube (3.7.1) for the report, during the synthesis, when not emulating; the
   // emulated machine always does, its links need it. Off by default: the BSP's heuristic costs CPU at 8 x 8

@@ -69,11 +69,7 @@ class SharedMemoryInterconnect<Real>::Endpoint final : public node::BasicTranspo
     machine_.tokenSlots_[next]->put(token);
     machine_.bells_[next]->ring();
   }
-  void announceTermination() override {
-    machine_.terminated_.store(true, std::memory_order_release);
-    for (const auto& bell : machine_.bells_) bell->ring();
-    machine_.channel_.doorbell().ring();
-  }
+  void announceTermination() override { machine_.stop(); }
   bool terminated() const override { return machine_.terminated(); }
 
  private:
@@ -124,6 +120,13 @@ template <class Real>
 SharedMemoryInterconnect<Real>::~SharedMemoryInterconnect() = default;
 
 template <class Real>
+void SharedMemoryInterconnect<Real>::stop() {
+  terminated_.store(true, std::memory_order_release);
+  for (const auto& bell : bells_) bell->ring();
+  channel_.doorbell().ring();
+}
+
+template <class Real>
 node::BasicTransport<Real>& SharedMemoryInterconnect<Real>::endpoint(int processor) {
   return *endpoints_[processor];
 }
@@ -134,7 +137,8 @@ void SharedMemoryInterconnect<Real>::ringNeighbours(int processor) {
 }
 
 template <class Real>
-typename SharedMemoryInterconnect<Real>::RayQueue* SharedMemoryInterconnect<Real>::queue(int from, int to) const {
+typename SharedMemoryInterconnect<Real>::RayQueue* SharedMemoryInterconnect<Real>::queue(int from,
+                                                                                         int to) const {
   return outgoing_[from][regions_.neighbourSlot(from, to)].get();
 }
 

@@ -56,6 +56,8 @@ class SharedMemoryInterconnect {
     return std::int64_t(backPressure_.load(std::memory_order_relaxed) >> 1);
   }
   bool terminated() const { return terminated_.load(std::memory_order_acquire); }
+  // The host's watchdog, on a machine that stalled: every processor's next step returns Terminated.
+  void stop();
   // Saturation of the FIFOs a processor sends into, summed per face of the processor.
   QueueStats outgoingStats(int processor, node::Face face) const;
 

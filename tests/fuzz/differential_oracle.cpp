@@ -3,10 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "core/image.h"
@@ -21,6 +27,54 @@ namespace {
 // light volumes, reflections) to take part.
 constexpr int kMaxSide = 8;
 constexpr int kDepth = 3;
+
+// The machine's own watchdog, short: a render of at most 8x8 takes milliseconds. A stall is an error the
+// oracle reports; a hang the machine cannot report (a step that never returns) is the HangWatch's.
+constexpr std::chrono::milliseconds kStallPeriod{5000};
+
+// The per-render time limit (RAYCUBE_ORACLE_SECONDS, default 30): a render still running then hangs. It
+// cannot be returned from, so the watch names it and aborts: libFuzzer keeps the input as a crash, ctest
+// fails, neither waits forever.
+class HangWatch {
+ public:
+  static HangWatch& instance() {
+    static HangWatch watch;
+    return watch;
+  }
+  void start(const std::string& label) {
+    {
+      const std::lock_guard lock(mutex_);
+      label_ = label;
+    }
+    deadline_.store((std::chrono::steady_clock::now() + limit_).time_since_epoch().count());
+  }
+  void stop() { deadline_.store(0); }
+
+ private:
+  HangWatch() : limit_(limitFromEnvironment()) {
+    std::thread([this] { watch(); }).detach();
+  }
+  static std::chrono::seconds limitFromEnvironment() {
+    const char* value = std::getenv("RAYCUBE_ORACLE_SECONDS");
+    return std::chrono::seconds(value != nullptr && std::atoi(value) > 0 ? std::atoi(value) : 30);
+  }
+  [[noreturn]] void watch() {
+    for (;;) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      const auto deadline = deadline_.load();
+      if (deadline == 0 || std::chrono::steady_clock::now().time_since_epoch().count() < deadline) continue;
+      const std::lock_guard lock(mutex_);
+      std::fprintf(stderr, "ORACLE: HANG: %s still running after %lld s\n", label_.c_str(),
+                   static_cast<long long>(limit_.count()));
+      std::fflush(stderr);
+      std::abort();
+    }
+  }
+  const std::chrono::seconds limit_;
+  std::atomic<std::chrono::steady_clock::rep> deadline_{0};
+  std::mutex mutex_;
+  std::string label_;
+};
 
 struct Mode {
   std::string name;
@@ -39,13 +93,21 @@ std::vector<Mode> modesFor(const host::RenderSettings& settings) {
     host::Balance balance;
     std::size_t capacity;
     node::LightRayMode lightRays;
+    node::CellStructure cells;
   };
+  // Threads at 2x2 (a region's BVH and the paper's cells) and a BSP with light rays as messages, besides
+  // strips, tiny FIFOs and every light-ray mode (issue 41).
   const Machine machines[] = {
       {"machine uniform 2x2, FIFO 1, light pyramids", 2, 2, host::Balance::Uniform, 1,
-       node::LightRayMode::Pyramid},
-      {"machine bsp 1x3, FIFO 128, light cones", 1, 3, host::Balance::Bsp, 128, node::LightRayMode::Cone},
+       node::LightRayMode::Pyramid, node::CellStructure::Auto},
+      {"machine uniform 2x2, paper cells", 2, 2, host::Balance::Uniform, 512, node::LightRayMode::Pyramid,
+       node::CellStructure::Paper},
+      {"machine bsp 2x2, FIFO 4, light-ray messages", 2, 2, host::Balance::Bsp, 4,
+       node::LightRayMode::Messages, node::CellStructure::Auto},
+      {"machine bsp 1x3, FIFO 128, light cones", 1, 3, host::Balance::Bsp, 128, node::LightRayMode::Cone,
+       node::CellStructure::Auto},
       {"machine uniform 3x1, FIFO 2, light-ray messages", 3, 1, host::Balance::Uniform, 2,
-       node::LightRayMode::Messages},
+       node::LightRayMode::Messages, node::CellStructure::Auto},
   };
   for (const Machine& m : machines) {
     host::MachineSettings machine;
@@ -54,7 +116,9 @@ std::vector<Mode> modesFor(const host::RenderSettings& settings) {
     machine.balance = m.balance;
     machine.queueCapacity = m.capacity;
     machine.lightRays = m.lightRays;
+    machine.cells = m.cells;
     machine.subsampleWindow = 2;
+    machine.stallPeriod = kStallPeriod;
     modes.push_back({m.name, [machine](const core::Scene& s, const host::RenderSettings& r) {
                        return host::renderMachine(s, r, machine);
                      }});
@@ -70,18 +134,26 @@ std::string checkParseError(const core::SceneError& e, std::string_view source) 
   return "";
 }
 
-// The render's image, or the message of the std::invalid_argument it refused the scene with.
+// The render's image, or the message of the std::invalid_argument it refused the scene with, or of any
+// other error it ended with (a stalled machine's).
 struct Outcome {
   std::optional<core::Image> image;
   std::string refusal;
+  std::string error;
 };
 
 Outcome run(const Mode& mode, const core::Scene& scene, const host::RenderSettings& settings) {
+  HangWatch::instance().start(fmt::format("{} ({})", mode.name, core::nameOf(settings.precision)));
+  Outcome outcome;
   try {
-    return Outcome{mode.render(scene, settings).image, ""};
+    outcome.image = mode.render(scene, settings).image;
   } catch (const std::invalid_argument& e) {
-    return Outcome{std::nullopt, e.what()};
+    outcome.refusal = e.what();
+  } catch (const std::exception& e) {
+    outcome.error = e.what();
   }
+  HangWatch::instance().stop();
+  return outcome;
 }
 
 }  // namespace
@@ -103,9 +175,12 @@ std::string checkInput(std::string_view text, std::string_view source) {
     settings.precision = precision;
     const Mode reference{"reference", host::renderReference};
     const Outcome expected = run(reference, scene, settings);
+    if (!expected.error.empty())
+      return fmt::format("reference ({}): {}", core::nameOf(precision), expected.error);
     for (const Mode& mode : modes) {
       const Outcome got = run(mode, scene, settings);
       const std::string label = fmt::format("{} ({})", mode.name, core::nameOf(precision));
+      if (!got.error.empty()) return fmt::format("{}: {}", label, got.error);
       if (expected.image.has_value() != got.image.has_value())
         return fmt::format("{}: {} where the reference {}", label,
                            got.image ? "rendered" : "refused the scene (" + got.refusal + ")",
