@@ -1,5 +1,5 @@
-// The machine in simulated time on SimGrid (host/engines/simgrid/emulated_machine.h): the same image as every mode, the
-// same simulated time on every run, and times that can be worked out by hand.
+// The machine in simulated time on SimGrid (host/engines/simgrid/emulated_machine.h): the same image as every
+// mode, the same simulated time on every run, and times that can be worked out by hand.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -7,9 +7,9 @@
 #include <fstream>
 
 #include "core/spd/balls.h"
-#include "host/studies/scaling.h"
 #include "host/render/sequential_renderers.h"
 #include "host/report/emulated_report.h"
+#include "host/studies/scaling.h"
 #include "machine_test_support.h"
 
 namespace raycube::host {
@@ -61,7 +61,8 @@ TEST(EmulatedMachine, TheSameRunGivesTheSameSimulatedTimeToTheLastDigit) {
     EXPECT_EQ(reports[0].processors[p].computeSeconds, reports[1].processors[p].computeSeconds) << p;
     EXPECT_EQ(reports[0].processors[p].blockedSeconds, reports[1].processors[p].blockedSeconds) << p;
     EXPECT_EQ(reports[0].processors[p].node.processed.intersectionTests,
-              reports[1].processors[p].node.processed.intersectionTests) << p;
+              reports[1].processors[p].node.processed.intersectionTests)
+        << p;
   }
 }
 
@@ -89,7 +90,7 @@ TEST(EmulatedMachine, OneProcessorTakesExactlyItsChargedWork) {
   const core::Scene scene = core::makeBalls(1);
   MachineSettings m = emulated(1, 1);
   m.emulate = userPlatform(oneFreeNodePlatform(), {});
-  m.emulate->costs = CostTable{0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
+  m.emulate->costs = CostTable{0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0};
   MachineReport report;
   renderMachineWatched(scene, settingsFor(16), m, report, "hand");
   const double segments = double(report.processors[0].node.processed.totalRays());
@@ -99,11 +100,13 @@ TEST(EmulatedMachine, OneProcessorTakesExactlyItsChargedWork) {
   EXPECT_EQ(report.emulated->nodeSpeed, 1);
 }
 
-// A cost table's nodeSpeed of twice the platform's halves the compute time of the same work; links do not
-// change.
+// A cost table's nodeSpeed of twice the platform's halves the compute time of the same work; links, and
+// messages (charged in seconds), do not change.
 TEST(EmulatedMachine, ComputeTimeScalesWithTheNodeSpeed) {
   const core::Scene scene = core::makeBalls(1);
   MachineSettings slow = emulated(1, 2), fast = emulated(1, 2);
+  for (MachineSettings* m : {&slow, &fast})
+    m->emulate->costs.sendSeconds = m->emulate->costs.receiveSeconds = 0;
   MachineReport a, b;
   renderMachineWatched(scene, settingsFor(16), slow, a, "slow");
   fast.emulate->nodeSpeed = 2 * a.emulated->nodeSpeed;
@@ -113,11 +116,39 @@ TEST(EmulatedMachine, ComputeTimeScalesWithTheNodeSpeed) {
     EXPECT_DOUBLE_EQ(a.processors[p].computeSeconds, 2 * b.processors[p].computeSeconds) << p;
 }
 
+// Messages cost seconds of the CPU that pays them, at any node speed: a ray or the token sent costs the
+// sender sendSeconds, received the receiver receiveSeconds (a token visit is one of each).
+TEST(EmulatedMachine, MessagesCostTheirSecondsOnTheCpuThatPays) {
+  const core::Scene scene = core::makeBalls(1);
+  for (const double speedFactor : {1.0, 3.0}) {
+    MachineSettings m = emulated(1, 2);
+    m.lightRays = node::LightRayMode::Messages;
+    m.emulate->costs = CostTable{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.25, 0.5, 0};
+    MachineReport report;
+    renderMachineWatched(scene, settingsFor(16), m, report, "messages");
+    if (speedFactor != 1.0) {
+      m.emulate->nodeSpeed = speedFactor * report.emulated->nodeSpeed;
+      renderMachineWatched(scene, settingsFor(16), m, report, "messages, faster nodes");
+    }
+    std::uint64_t messages = 0;
+    for (const ProcessorReport& p : report.processors) {
+      std::uint64_t sent = p.node.tokenVisits, received = p.node.tokenVisits;
+      for (auto n : p.node.sent) sent += n;
+      for (auto n : p.node.received) received += n;
+      messages += sent;
+      EXPECT_NEAR(p.computeSeconds, 0.25 * double(sent) + 0.5 * double(received), 1e-9 * p.computeSeconds)
+          << "processor " << p.node.id << ", node speed x" << speedFactor;
+    }
+    EXPECT_GT(messages, 2u) << "the two processors exchanged rays";
+  }
+}
+
 // Store and forward on the iPSC/1: on a BSP whose regions map onto non-adjacent hypercube nodes, messages
 // are relayed, which costs the relays CPU; every relayed message crossed one more link.
 TEST(EmulatedMachine, StoreAndForwardRelaysCostTheRelaysCpu) {
   const core::Scene scene = core::makeBalls(2);
-  MachineSettings m = emulated(1, 24);  // 24 regions on a 5-cube: the mapping leaves some neighbours 2+ hops apart
+  MachineSettings m =
+      emulated(1, 24);  // 24 regions on a 5-cube: the mapping leaves some neighbours 2+ hops apart
   m.lightRays = node::LightRayMode::Messages;
   MachineReport report;
   renderMachineWatched(scene, settingsFor(48), m, report, "relays");
@@ -145,15 +176,32 @@ TEST(EmulatedMachine, CostFilesAreCheckedWithFileAndLine) {
   EXPECT_EQ(p.costs.sphereTest, 40);
   EXPECT_EQ(p.routing, Routing::Direct);
   EXPECT_THROW(builtinPlatform("cm5"), std::invalid_argument);
+  // The flop-equivalent message costs of former cost tables name what replaced them.
+  std::ofstream(path) << "messageSent 30\n";
+  try {
+    applyCostFile(path, p);
+    FAIL() << "a former message cost was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(
+        std::string(e.what()).find(path.string() + ":1: 'messageSent' (flop-equivalents) is now sendSeconds"),
+        std::string::npos)
+        << e.what();
+  }
   std::filesystem::remove(path);
 }
 
-// The shipped cost tables (host/machine/platforms/*.costs) spell out CostTable's hand counts, so a user's
-// platform without --costs costs what the built-in ones do; they differ in routing only.
+// The shipped cost tables (host/machine/platforms/*.costs) spell out CostTable's hand counts of computation,
+// so a user's platform without --costs computes as the built-in ones do; they differ in routing and in
+// their messages' seconds (the iPSC/1's derived software overheads, the cluster's former flop-equivalents).
 TEST(EmulatedMachine, ShippedPlatformsCarryTheHandCountedCosts) {
   const EmulatedPlatform ipsc1 = builtinPlatform("ipsc1"), cluster = builtinPlatform("cluster");
-  EXPECT_EQ(ipsc1.costs, CostTable{});
-  EXPECT_EQ(cluster.costs, CostTable{});
+  CostTable ipsc1Costs, clusterCosts;
+  ipsc1Costs.sendSeconds = ipsc1Costs.receiveSeconds = 0.5e-3;
+  ipsc1Costs.relaySeconds = 1.0e-3;
+  clusterCosts.sendSeconds = clusterCosts.receiveSeconds = 75e-9;
+  clusterCosts.relaySeconds = 150e-9;
+  EXPECT_EQ(ipsc1.costs, ipsc1Costs);
+  EXPECT_EQ(cluster.costs, clusterCosts);
   EXPECT_EQ(ipsc1.routing, Routing::StoreAndForward);
   EXPECT_EQ(cluster.routing, Routing::Direct);
   EXPECT_EQ(ipsc1.platformFile.filename(), "ipsc1.xml");

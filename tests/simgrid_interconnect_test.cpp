@@ -1,7 +1,8 @@
-// The SimGrid interconnect (queues/interconnects/simgrid_interconnect.h) on a platform small enough to work out by hand:
-// a ray message crossing k hypercube hops store and forward arrives after k link transfers plus the k - 1
-// relays' CPU (the iPSC/1 routed in node software), and a full FIFO blocks its sender for exactly the time
-// its receiver takes to take the ray in. SimGrid allows one simulation per process: each runs in a child.
+// The SimGrid interconnect (queues/interconnects/simgrid_interconnect.h) on a platform small enough to work
+// out by hand: a ray message crossing k hypercube hops store and forward arrives after k link transfers plus
+// the k - 1 relays' CPU (the iPSC/1 routed in node software), and a full FIFO blocks its sender for exactly
+// the time its receiver takes to take the ray in. SimGrid allows one simulation per process: each runs in a
+// child.
 #include "queues/interconnects/simgrid_interconnect.h"
 
 #include <gtest/gtest.h>
@@ -23,13 +24,12 @@ using Message = node::BasicRayMessage<double>;
 
 // The platform's numbers, chosen so that every term of the sums is visible and none is a round multiple of
 // another.
-constexpr double kLatency = 1e-3;           // s per hop
-constexpr double kBandwidth = 1.25e6;       // bytes/s per direction (10 Mbit/s)
-constexpr double kNodeSpeed = 1e5;          // flop-equivalents/s
-constexpr double kRelayFlops = 37;          // per message relayed: 0.37 ms on a node
+constexpr double kLatency = 1e-3;      // s per hop
+constexpr double kBandwidth = 1.25e6;  // bytes/s per direction (10 Mbit/s)
+constexpr double kNodeSpeed = 1e5;     // flop-equivalents/s
+constexpr double kRelay = 0.37e-3;     // s of a node's CPU per message relayed
 constexpr double kRayBytes = sizeof(Message);
 constexpr double kHop = kLatency + kRayBytes / kBandwidth;
-constexpr double kRelay = kRelayFlops / kNodeSpeed;
 
 // Runs `simulate` (which returns the times it measured) in a child process and returns them.
 std::vector<double> inChildProcess(const std::function<std::vector<double>()>& simulate) {
@@ -69,7 +69,8 @@ struct Cube {
     manager = zone->create_host(queues::kCubeManagerHost, kNodeSpeed);
     auto route = [&](s4u::Host* a, s4u::Host* b, const std::string& name) {
       s4u::Link* link = zone->create_link(name, kBandwidth)->set_latency(kLatency);
-      zone->add_route(a->get_netpoint(), b->get_netpoint(), nullptr, nullptr, {s4u::LinkInRoute(link)}, false);
+      zone->add_route(a->get_netpoint(), b->get_netpoint(), nullptr, nullptr, {s4u::LinkInRoute(link)},
+                      false);
     };
     for (std::uint32_t n = 0; n < nodes; ++n) {
       route(hosts[n], manager, "manager-" + std::to_string(n));
@@ -112,7 +113,7 @@ SimGridWiring wiringFor(const Cube& cube, std::uint32_t receiverNode, std::size_
   w.hosts = cube.hosts;
   w.manager = cube.manager;
   w.routing = Routing::StoreAndForward;
-  w.relayFlops = kRelayFlops;
+  w.relaySeconds = kRelay;
   return w;
 }
 

@@ -17,14 +17,21 @@ namespace {
 constexpr std::string_view kBuiltinPlatforms[] = {"ipsc1", "cluster"};
 
 std::map<std::string, double CostTable::*> costFields() {
-  return {{"sphereTest", &CostTable::sphereTest},           {"coneTest", &CostTable::coneTest},
-          {"polygonTest", &CostTable::polygonTest},         {"polygonVertex", &CostTable::polygonVertex},
-          {"patchTest", &CostTable::patchTest},             {"cellStep", &CostTable::cellStep},
-          {"raySegment", &CostTable::raySegment},           {"rayFinished", &CostTable::rayFinished},
-          {"raySpawned", &CostTable::raySpawned},           {"contribution", &CostTable::contribution},
-          {"messageSent", &CostTable::messageSent},         {"messageReceived", &CostTable::messageReceived},
-          {"messageRelayed", &CostTable::messageRelayed},   {"tokenVisit", &CostTable::tokenVisit}};
+  return {{"sphereTest", &CostTable::sphereTest},    {"coneTest", &CostTable::coneTest},
+          {"polygonTest", &CostTable::polygonTest},  {"polygonVertex", &CostTable::polygonVertex},
+          {"patchTest", &CostTable::patchTest},      {"cellStep", &CostTable::cellStep},
+          {"raySegment", &CostTable::raySegment},    {"rayFinished", &CostTable::rayFinished},
+          {"raySpawned", &CostTable::raySpawned},    {"contribution", &CostTable::contribution},
+          {"sendSeconds", &CostTable::sendSeconds},  {"receiveSeconds", &CostTable::receiveSeconds},
+          {"relaySeconds", &CostTable::relaySeconds}};
 }
+
+// The message costs a cost table gave in flop-equivalents before they were seconds: what replaces each.
+const std::map<std::string, std::string_view> kFormerMessageCosts{
+    {"messageSent", "sendSeconds"},
+    {"messageReceived", "receiveSeconds"},
+    {"messageRelayed", "relaySeconds"},
+    {"tokenVisit", "sendSeconds and receiveSeconds"}};
 
 template <class Array>
 std::uint64_t sum(const Array& a) {
@@ -41,9 +48,12 @@ double CostTable::flopsOf(const node::NodeStats& n) const {
          polygonTest * double(p.testsByShape[2]) + polygonVertex * double(p.polygonVerticesTested) +
          patchTest * double(p.testsByShape[3]) + cellStep * double(p.cellSteps + p.boxTests) +
          raySegment * double(p.totalRays()) + rayFinished * double(sum(n.finished)) +
-         raySpawned * double(sum(n.spawned)) + contribution * double(p.contributions) +
-         messageSent * double(sum(n.sent)) + messageReceived * double(sum(n.received)) +
-         tokenVisit * double(n.tokenVisits);
+         raySpawned * double(sum(n.spawned)) + contribution * double(p.contributions);
+}
+
+double CostTable::messageSecondsOf(const node::NodeStats& n) const {
+  return sendSeconds * double(sum(n.sent) + n.tokenVisits) +
+         receiveSeconds * double(sum(n.received) + n.tokenVisits);
 }
 
 std::vector<std::filesystem::path> platformDirectories() {
@@ -93,7 +103,8 @@ void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platfor
     if (!(words >> value)) throw std::runtime_error(fmt::format("{}: '{}' needs a value", where, key));
     if (key == "routing") {
       if (value != "store-and-forward" && value != "direct")
-        throw std::runtime_error(fmt::format("{}: routing is store-and-forward or direct, not '{}'", where, value));
+        throw std::runtime_error(
+            fmt::format("{}: routing is store-and-forward or direct, not '{}'", where, value));
       platform.routing = value == "direct" ? Routing::Direct : Routing::StoreAndForward;
       continue;
     }
@@ -101,7 +112,8 @@ void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platfor
     try {
       std::size_t used = 0;
       number_ = std::stod(value, &used);
-      if (used != value.size() || !(number_ >= 0) || !std::isfinite(number_)) throw std::invalid_argument(value);
+      if (used != value.size() || !(number_ >= 0) || !std::isfinite(number_))
+        throw std::invalid_argument(value);
     } catch (const std::exception&) {
       throw std::runtime_error(fmt::format("{}: '{}' is not a finite number >= 0", where, value));
     }
@@ -110,6 +122,10 @@ void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platfor
       platform.nodeSpeed = number_;
     } else if (const auto f = fields.find(key); f != fields.end()) {
       platform.costs.*(f->second) = number_;
+    } else if (const auto former = kFormerMessageCosts.find(key); former != kFormerMessageCosts.end()) {
+      throw std::runtime_error(
+          fmt::format("{}: '{}' (flop-equivalents) is now {}, in seconds of the CPU that pays it", where, key,
+                      former->second));
     } else {
       throw std::runtime_error(fmt::format("{}: unknown cost '{}'", where, key));
     }

@@ -13,9 +13,10 @@
 
 namespace raycube::host {
 
-// Flop-equivalents per operation a node counts (hand counts of the floating-point operations in core/ and
-// node/; a copy of a ray message counts as a few). Only their ratios matter: the platform's node speed turns
-// them into seconds.
+// What each operation a node counts costs. Computation in flop-equivalents (hand counts of the floating-point
+// operations in core/ and node/): only their ratios matter, the platform's node speed turns them into
+// seconds. Messages in seconds of the CPU that pays them (the iPSC's were software overheads measured on the
+// machine, not flops): the sender's, the receiver's, and a relaying node's under store and forward.
 struct CostTable {
   double sphereTest = 25;     // oc = o - c, b = oc.d, c = oc.oc - r^2, b^2 - c, sqrt, two roots
   double coneTest = 60;       // a quadric in the cone's frame plus two caps
@@ -27,14 +28,15 @@ struct CostTable {
   double rayFinished = 60;    // shading where a ray ends: point, normal, Phong terms, or the light term
   double raySpawned = 25;     // a reflected, refracted or light ray: direction, weight, owner lookup
   double contribution = 5;    // a piece of pixel colour into the block for the host
-  double messageSent = 30;    // packing a ray message into a FIFO
-  double messageReceived = 30;
-  double messageRelayed = 60;  // store and forward: a node receives and re-sends another's message
-  double tokenVisit = 20;
+  double sendSeconds = 0;     // a message sent (a ray, or the token), on the sender's CPU
+  double receiveSeconds = 0;  // a message received, on the receiver's CPU
+  double relaySeconds = 0;    // store and forward: a node receives and re-sends another's message
 
-  // What a node's counted work costs, in flop-equivalents (linear: a difference of two calls is the cost
-  // of the work between them).
+  // What a node's counted work costs: its computation in flop-equivalents, its messages in seconds (each
+  // linear: a difference of two calls is the cost of the work between them). A token visit is a message
+  // received and one sent (3.6).
   double flopsOf(const node::NodeStats& stats) const;
+  double messageSecondsOf(const node::NodeStats& stats) const;
   bool operator==(const CostTable&) const = default;
 };
 

@@ -118,9 +118,7 @@ class SimGridInterconnect<Real>::Endpoint final : public node::BasicTransport<Re
   std::uint64_t contributionsSent() const { return contributionsSent_; }
 
  private:
-  std::size_t slotOf(int neighbour) const {
-    return net_.regions_.neighbourSlot(id_, neighbour);
-  }
+  std::size_t slotOf(int neighbour) const { return net_.regions_.neighbourSlot(id_, neighbour); }
 
   SimGridInterconnect& net_;
   int id_;
@@ -165,7 +163,8 @@ void SimGridInterconnect<Real>::startCommunicationTasks() {
 
 template <class Real>
 void SimGridInterconnect<Real>::commit(int processor) {
-  for (auto& packet : endpoints_[processor]->takeOutbox()) route(wiring_.cubeNode[processor], std::move(packet));
+  for (auto& packet : endpoints_[processor]->takeOutbox())
+    route(wiring_.cubeNode[processor], std::move(packet));
 }
 
 template <class Real>
@@ -208,7 +207,8 @@ void SimGridInterconnect<Real>::communicationTask(std::uint32_t cubeNode) {
       continue;
     }
     const double start = s4u::Engine::get_clock();
-    s4u::this_actor::execute(wiring_.relayFlops);  // store and forward, on this node's CPU
+    // Store and forward, on this node's CPU: seconds at its host's speed.
+    s4u::this_actor::execute(wiring_.relaySeconds * s4u::this_actor::get_host()->get_speed());
     relaySeconds_[cubeNode] += s4u::Engine::get_clock() - start;
     ++relayed_[cubeNode];
     route(cubeNode, std::move(packet));

@@ -6,12 +6,11 @@
 // receiver takes it in. Each hypercube node runs a communication task (a daemon actor) that receives,
 // relays in software what is for another node (store and forward, charged on its CPU) and delivers the
 // rest to its processor. Waiting is a condition variable in simulated time, never a poll.
-#include <simgrid/s4u.hpp>
-
 #include <deque>
 #include <map>
 #include <memory>
 #include <optional>
+#include <simgrid/s4u.hpp>
 #include <vector>
 
 #include "core/contribution_sink.h"
@@ -30,12 +29,12 @@ struct LinkTrafficCount {
 };
 
 struct SimGridWiring {
-  std::size_t capacity = 128;                      // rays per face FIFO
-  std::vector<std::uint32_t> cubeNode;             // per processor: its node on the hypercube
-  std::vector<simgrid::s4u::Host*> hosts;          // per hypercube node (2^d of them)
-  simgrid::s4u::Host* manager = nullptr;           // the host (cube manager)
+  std::size_t capacity = 128;              // rays per face FIFO
+  std::vector<std::uint32_t> cubeNode;     // per processor: its node on the hypercube
+  std::vector<simgrid::s4u::Host*> hosts;  // per hypercube node (2^d of them)
+  simgrid::s4u::Host* manager = nullptr;   // the host (cube manager)
   Routing routing = Routing::StoreAndForward;
-  double relayFlops = 0;                           // CPU a node spends relaying one message
+  double relaySeconds = 0;  // CPU a node spends relaying one message
 };
 
 template <class Real>

@@ -1,13 +1,13 @@
 #include "host/engines/simgrid/emulated_machine.h"
 
 #include <fmt/format.h>
-#include <simgrid/s4u.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstring>
 #include <functional>
+#include <simgrid/s4u.hpp>
 #include <stdexcept>
 #include <type_traits>
 
@@ -96,7 +96,9 @@ std::uint32_t cubeNodesFor(const std::vector<std::uint32_t>& cubeNode) {
   return n;
 }
 
-std::string hostName(std::uint32_t cubeNode) { return "node-" + std::to_string(cubeNode); }
+std::string hostName(std::uint32_t cubeNode) {
+  return "node-" + std::to_string(cubeNode);
+}
 
 s4u::Host* hostNamed(const std::string& name, const EmulatedPlatform& platform) {
   s4u::Host* h = s4u::Engine::get_instance()->host_by_name_or_null(name);
@@ -143,6 +145,21 @@ class Timeline {
   std::vector<StateInterval> intervals_;
 };
 
+// What a node's counted work costs its host's CPU, in the host's flops: the computation scaled to the cost
+// table's node speed (speedScale), the messages' seconds at the host's own speed.
+class ChargedWork {
+ public:
+  ChargedWork(const CostTable& costs, double speedScale)
+      : costs_(costs), speedScale_(speedScale), hostSpeed_(s4u::this_actor::get_host()->get_speed()) {}
+  double flopsOf(const node::NodeStats& stats) const {
+    return costs_.flopsOf(stats) * speedScale_ + costs_.messageSecondsOf(stats) * hostSpeed_;
+  }
+
+ private:
+  const CostTable& costs_;
+  double speedScale_, hostSpeed_;
+};
+
 // A processor's actor: step the node, charge the work the step counted, then ship what it produced (so
 // messages leave when the work that made them is done); wait in simulated time when there is nothing to do.
 template <class Real>
@@ -150,13 +167,14 @@ void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInt
                           const CostTable& costs, double speedScale, ProcessorReport& report,
                           std::vector<Timeline>& timelines) {
   Timeline& timeline = timelines[std::size_t(id)];
-  double counted = costs.flopsOf(node.stats());
+  const ChargedWork charged(costs, speedScale);
+  double counted = charged.flopsOf(node.stats());
   for (;;) {
     const node::Step step = node.step();
-    const double now = costs.flopsOf(node.stats());
+    const double now = charged.flopsOf(node.stats());
     if (now > counted) {
       const double start = s4u::Engine::get_clock();
-      s4u::this_actor::execute((now - counted) * speedScale);
+      s4u::this_actor::execute(now - counted);
       report.computeSeconds += s4u::Engine::get_clock() - start;
       timeline.add(std::uint32_t(id), ProcessorState::Computing, start, s4u::Engine::get_clock());
       counted = now;
@@ -197,7 +215,7 @@ queues::SimGridWiring wiringFor(const SimulationInput& in) {
   for (std::uint32_t n = 0; n < cubeNodes; ++n) wiring.hosts.push_back(hostNamed(hostName(n), in.platform));
   wiring.manager = hostNamed(queues::kCubeManagerHost, in.platform);
   wiring.routing = in.platform.routing;
-  wiring.relayFlops = in.platform.costs.messageRelayed * speedScale(in.platform, *wiring.hosts[0]);
+  wiring.relaySeconds = in.platform.costs.relaySeconds;
   return wiring;
 }
 
@@ -254,7 +272,8 @@ void simulate(SimulationInput in, PipeWriter& out) {
   const int processors = int(in.setups.size());
   std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> nodes;
   for (int p = 0; p < processors; ++p)
-    nodes.push_back(std::make_unique<node::LogicalProcessor<Real>>(in.context, std::move(in.setups[p]), net.endpoint(p)));
+    nodes.push_back(
+        std::make_unique<node::LogicalProcessor<Real>>(in.context, std::move(in.setups[p]), net.endpoint(p)));
   out.value(Record::SynthesisStarts);  // every node has subdivided its region
   std::vector<ProcessorReport> reports(static_cast<std::size_t>(processors));
   std::vector<Timeline> timelines(static_cast<std::size_t>(processors));
@@ -311,8 +330,8 @@ MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
 }  // namespace
 
 template <class Real>
-MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
-                                       const EngineHooks& hooks) {
+MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
+                                      std::vector<node::NodeSetup> setups, const EngineHooks& hooks) {
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error("cannot create a pipe for the simulation");
   std::fflush(nullptr);
@@ -345,7 +364,8 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context, std::
   ::waitpid(child, &status, 0);
   if (!run) {
     if (WIFSIGNALED(status))
-      failure += fmt::format(" (the simulation process died of signal {}: {})", WTERMSIG(status), strsignal(WTERMSIG(status)));
+      failure += fmt::format(" (the simulation process died of signal {}: {})", WTERMSIG(status),
+                             strsignal(WTERMSIG(status)));
     throw std::runtime_error("emulated machine: " + failure);
   }
   return std::move(*run);

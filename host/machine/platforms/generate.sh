@@ -6,15 +6,19 @@ set -eu
 cd "$(dirname "$0")"
 
 # The iPSC/1's largest machine, a 7-cube (128 nodes): node speed, and its links (machines-and-engines.md:
-# 10 Mbit/s Ethernet-chip links, about 1 ms to a neighbour and 1 ms more per further hop).
+# 10 Mbit/s Ethernet-chip links, about 1 ms to a neighbour and 1 ms more per further hop, mostly software).
 ipsc1_nodes=128
 # The node speed is the one fitted constant (README, "Emulated machine time"): the speed that makes one
 # processor render the paper's table-2 case (balls 2, 128x128, depth 5) in 13941 s with ipsc1.costs, fitted
 # with `raycube scaling --size 128x128 --emulate ipsc1 --light-rays messages --load-metric rays --procs 1
 # --fit 13941`.
 ipsc1_speed=2138.8f
-ipsc1_bandwidth=10Mbps
-ipsc1_latency=1ms
+# The wire: a 128-byte ray at 0.56 MB/s (1.8 us per byte: Nugent 1988's "ten times the bandwidth of the
+# iPSC/1" against the iPSC/2's 5.6 MB/s full duplex; 0.28 MB/s if it compares one direction) and one minimum
+# Ethernet frame's time (64 bytes at 10 Mbit/s) of latency; the software overheads, most of the iPSC/1's
+# millisecond to a neighbour, are charged on the CPUs in ipsc1.costs.
+ipsc1_bandwidth=560kBps
+ipsc1_latency=51.2us
 # A present-day cluster of up to 4096 nodes: the cost table's flop-equivalents per second one core of this
 # host achieves on balls 2, measured by benchmarks/cluster_calibration_benchmark.cpp (node_speed; README,
 # "On a present-day cluster") and copied here by hand; links of about 1 us and 10 GB/s through a switch.
