@@ -7,7 +7,9 @@
 #include <atomic>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "core/bvh.h"
@@ -78,6 +80,7 @@ struct NodeStats {
   std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
   std::uint64_t primariesHeld = 0;  // steps with primaries left that found the machine holding them back
   std::uint64_t overflowHighWater = 0;
+  std::uint64_t locks = 0;  // FifoFull::Lock: times the synthesis task locked on a full FIFO (3.5.2)
   std::uint64_t tokenVisits = 0;
   std::uint32_t tokenRounds = 0;  // node 0: token rounds started
 };
@@ -104,6 +107,10 @@ class LogicalProcessor {
   bool readyToStep() const;
   // Waiting on full neighbour FIFOs (3.6's locked processors), not merely idle.
   bool blocked() const { return backlog() > 0; }
+  // FifoFull::Lock: the processor whose full FIFO the synthesis task is locked on, or -1. Safe to read from
+  // another thread (a deadlock watchdog), as is stepsWorked(), which changes whenever a step did anything.
+  int lockedOn() const { return lockedOn_.load(std::memory_order_acquire); }
+  std::uint64_t stepsWorked() const { return stepsWorked_.load(std::memory_order_acquire); }
   // Counted so far; read between steps (a driver charges simulated time from it after every step).
   const NodeStats& stats() const { return stats_; }
   // Ray segments evaluated here (stats().processed.totalRays()) as of the last step that worked; safe to
@@ -130,6 +137,12 @@ class LogicalProcessor {
                      double& transmission);
   void deliver(const core::BasicRayOutcome<Real>& outcome);
   void shipContributions(const core::BasicRayOutcome<Real>& outcome);
+  // FifoFull::Lock (3.5.2)
+  Step lockingStep(int primaries);
+  bool locked() const { return !held_.empty(); }
+  void sendOrLock(std::size_t slot, const Message& message);
+  bool sendHeld();
+  void publishLock();
   // Communication task
   void send(Message message);
   void countSent(std::size_t slot, const Message& message);
@@ -169,13 +182,21 @@ class LogicalProcessor {
   std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused
   const std::vector<Face> faceOf_;               // per neighbour: the face of this region it lies across
   std::vector<Message> inbox_;
+  // FifoFull::Lock: the rays the locked synthesis task is sending, in the order it sent them, with their
+  // neighbour's slot: the first waits for room in a full FIFO, the others (the rest of the evaluation it
+  // was in: a few rays at most) behind it. Empty when not locked, and always with FifoFull::Overflow.
+  const bool locks_;
+  std::deque<std::pair<std::size_t, Message>> held_;
+  std::atomic<int> lockedOn_{-1};
+  std::atomic<std::uint64_t> stepsWorked_{0};
   core::BasicRayOutcome<Real> outcome_;
-  core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
-  // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again in a later cell of the same ray is not tested
-  // again. The cached t is the object's nearest hit over the whole ray, the very number the reference
-  // renderer computes. Only up to the largest index the walk can meet (a processor reading the whole scene
-  // in place would otherwise hold 12 bytes per scene object: sombrero 3's 16 empty sky regions held 6 MB),
-  // and none with a BVH, which needs none.
+  core::BasicRayOutcome<Real>
+      lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
+  // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again
+  // in a later cell of the same ray is not tested again. The cached t is the object's nearest hit over the
+  // whole ray, the very number the reference renderer computes. Only up to the largest index the walk can
+  // meet (a processor reading the whole scene in place would otherwise hold 12 bytes per scene object:
+  // sombrero 3's 16 empty sky regions held 6 MB), and none with a BVH, which needs none.
   std::vector<std::uint32_t> memoStamp_;
   std::vector<double> memoT_;
   std::uint32_t rayStamp_ = 0;

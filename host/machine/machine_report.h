@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <vector>
+#include "host/machine/deadlock.h"
 
 #include "host/machine/machine_settings.h"
 #include "node/logical_processor.h"
@@ -93,7 +94,8 @@ struct MachineReport {
   std::uint32_t tokenRounds = 0;  // started by processor 0
   std::optional<EmulatedRun> emulated;
   std::optional<MpiRun> mpi;
-  std::uint64_t tokenPasses = 0;  // token visits over all processors
+  std::uint64_t tokenPasses = 0;     // token visits over all processors
+  std::optional<Deadlock> deadlock;  // --fifo-full lock: the run stopped there; the counts are up to it
 };
 
 }  // namespace raycube::host

@@ -116,6 +116,7 @@ class SimGridInterconnect<Real>::Endpoint final : public node::BasicTransport<Re
   void arrive(const node::Token& t) { token_ = t; }
   std::vector<std::unique_ptr<Packet>> takeOutbox() { return std::exchange(outbox_, {}); }
   std::uint64_t contributionsSent() const { return contributionsSent_; }
+  std::size_t creditsUsed(int neighbour) const { return creditsUsed_[slotOf(neighbour)]; }
 
  private:
   std::size_t slotOf(int neighbour) const {
@@ -239,6 +240,11 @@ void SimGridInterconnect<Real>::serveHost(core::ContributionSink& sink) {
     for (const core::Contribution& c : packet->contributions) sink.add(c);
     received += packet->contributions.size();
   }
+}
+
+template <class Real>
+std::size_t SimGridInterconnect<Real>::raysIn(int from, int to) const {
+  return endpoints_[from]->creditsUsed(to);
 }
 
 template <class Real>

@@ -66,6 +66,8 @@ class SimGridInterconnect {
   // ---- The host's actor: accumulates every block until every processor has finished and all arrived.
   void serveHost(core::ContributionSink& sink);
   bool terminated() const { return terminated_; }
+  // Rays processor `from` has sent its neighbour `to` that `to` has not taken in: its FIFO's occupancy.
+  std::size_t raysIn(int from, int to) const;
 
   double relaySeconds(std::uint32_t cubeNode) const { return relaySeconds_[cubeNode]; }
   std::uint64_t relayed(std::uint32_t cubeNode) const { return relayed_[cubeNode]; }

@@ -23,7 +23,7 @@ namespace s4u = simgrid::s4u;
 static_assert(std::is_trivially_copyable_v<ProcessorReport>);
 
 // ---- The child's results travel to the parent through a pipe, as tagged records.
-enum class Record : std::uint8_t { SynthesisStarts, Contributions, Progress, Reports, Failure };
+enum class Record : std::uint8_t { SynthesisStarts, Contributions, Progress, Deadlock, Reports, Failure };
 
 // The child's end of the pipe: it exits when the parent is gone.
 class PipeSink {
@@ -179,9 +179,17 @@ class Timeline {
 
 // A processor's actor: step the node, charge the work the step counted, then ship what it produced (so
 // messages leave when the work that made them is done); wait in simulated time when there is nothing to do.
+// Where each processor's actor waits, if it does: since when, and whether locked on a full FIFO (3.6). What
+// a deadlock leaves them doing.
+struct Waiting {
+  double since = -1;  // -1: not waiting
+  bool blocked = false;
+};
+
 template <class Real>
 void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInterconnect<Real>& net, int id,
-                          const CostTable& costs, ProcessorReport& report, std::vector<Timeline>& timelines) {
+                          const CostTable& costs, ProcessorReport& report, std::vector<Timeline>& timelines,
+                          Waiting& waiting) {
   Timeline& timeline = timelines[std::size_t(id)];
   double counted = costs.flopsOf(node.stats());
   for (;;) {
@@ -199,7 +207,9 @@ void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInt
     if (step == node::Step::Worked) continue;
     const double start = s4u::Engine::get_clock();
     const bool blocked = node.blocked();
+    waiting = {start, blocked};
     net.waitFor(id, [&] { return node.readyToStep(); });
+    waiting = {};
     const double waited = s4u::Engine::get_clock() - start;
     (blocked ? report.blockedSeconds : report.idleSeconds) += waited;
     timeline.add(std::uint32_t(id), blocked ? ProcessorState::Blocked : ProcessorState::Idle, start,
@@ -248,10 +258,11 @@ void simulate(SimulationInput in, PipeWriter& out) {
   out.value(Record::SynthesisStarts);  // every node has subdivided its region
   std::vector<ProcessorReport> reports(static_cast<std::size_t>(processors));
   std::vector<Timeline> timelines(static_cast<std::size_t>(processors));
+  std::vector<Waiting> waiting(static_cast<std::size_t>(processors));
   int finished = 0;
   for (int p = 0; p < processors; ++p)
     s4u::Actor::create("processor-" + std::to_string(p), wiring.hosts[in.cubeNode[p]], [&, p] {
-      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, reports[p], timelines);
+      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, reports[p], timelines, waiting[p]);
       ++finished;
     });
   ContributionsToParent toParent(out, [&] {
@@ -268,11 +279,31 @@ void simulate(SimulationInput in, PipeWriter& out) {
   });
   net.startCommunicationTasks();
   engine.run();
-  if (!net.terminated() || finished != processors || !hostDone)
-    throw std::runtime_error(fmt::format(
-        "the simulation deadlocked at {:.6f} simulated s: termination {}, {} of {} processors finished, host {}",
-        s4u::Engine::get_clock(), net.terminated() ? "announced" : "not announced", finished, processors,
-        hostDone ? "done" : "still waiting"));
+  // SimGrid ends a run where no actor can move as it ends a finished one (it says so on stderr): a cycle
+  // of processors locked on each other's full FIFOs (--fifo-full lock) is the run's result.
+  std::vector<int> lockedOn;
+  for (const auto& n : nodes) lockedOn.push_back(n->lockedOn());
+  const std::vector<int> cycle = net.terminated() ? std::vector<int>{} : lockCycle(lockedOn);
+  if (!cycle.empty()) {
+    Deadlock deadlock =
+        deadlockOf(cycle, in.context.regions, [&](int from, int to) { return net.raysIn(from, to); });
+    for (int p : cycle) deadlock.simulatedSeconds = std::max(deadlock.simulatedSeconds, waiting[p].since);
+    makespan = s4u::Engine::get_clock();
+    for (int p = 0; p < processors; ++p)  // the waits the deadlock left open
+      if (waiting[p].since >= 0)
+        timelines[p].add(std::uint32_t(p),
+                         waiting[p].blocked ? ProcessorState::Blocked : ProcessorState::Idle,
+                         waiting[p].since, makespan);
+    out.value(Record::Deadlock);
+    out.vector(deadlock.cycle);
+    out.value(deadlock.simulatedSeconds);
+  } else if (!net.terminated() || finished != processors || !hostDone) {
+    throw std::runtime_error(
+        fmt::format("the simulation deadlocked at {:.6f} simulated s: termination {}, {} of {} processors "
+                    "finished, host {}",
+                    s4u::Engine::get_clock(), net.terminated() ? "announced" : "not announced", finished,
+                    processors, hostDone ? "done" : "still waiting"));
+  }
   toParent.flush();
 
   EmulatedRun run;
@@ -304,6 +335,7 @@ void simulate(SimulationInput in, PipeWriter& out) {
 // The parent's side: the start of synthesis, contributions to the host's sink and progress as they come,
 // then the reports.
 MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
+  std::optional<Deadlock> deadlock;
   for (;;) {
     const auto tag = in.value<Record>();
     if (tag == Record::SynthesisStarts) {
@@ -313,6 +345,10 @@ MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
     } else if (tag == Record::Progress) {
       const auto evaluated = in.vector<std::uint64_t>();
       if (hooks.progress) hooks.progress(evaluated);
+    } else if (tag == Record::Deadlock) {
+      deadlock.emplace();
+      deadlock->cycle = in.vector<LockedFifo>();
+      deadlock->simulatedSeconds = in.value<double>();
     } else if (tag == Record::Failure) {
       throw std::runtime_error(in.string());
     } else {
@@ -326,6 +362,7 @@ MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
       s.links = in.vector<LinkTraffic>();
       s.timeline = in.vector<StateInterval>();
       run.emulated = std::move(s);
+      run.deadlock = std::move(deadlock);
       return run;
     }
   }

@@ -6,6 +6,7 @@
 #include "host/engines/node_thread.h"
 #include "host/util/parallel_for.h"
 #include "host/engines/processor_thread.h"
+#include "host/engines/threads/deadlock_watch.h"
 #include "node/scheduling.h"
 #include "queues/interconnects/jitter_transport.h"
 #include "queues/interconnects/shared_memory_interconnect.h"
@@ -45,6 +46,17 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
     });
   if (hooks.synthesisStarts) hooks.synthesisStarts();
   synthesis.count_down();
+  // --fifo-full lock: a deadlock is proved from here, and stops the machine as termination would.
+  std::optional<Deadlock> deadlock;
+  std::thread watch;
+  if (context.fifoFull == node::FifoFull::Lock)
+    watch = std::thread([&] {
+      deadlock = watchForDeadlock(
+          nodes, context.regions, queueCapacity_,
+          [&](int from, int to) { return interconnect.raysIn(from, to); },
+          [&] { return interconnect.terminated(); });
+      if (deadlock) interconnect.endpoint(0).announceTermination();
+    });
   // The host thread (3.5.1): accumulate contributions until the ring has proved termination.
   queues::ContributionChannel& channel = interconnect.hostChannel();
   auto accumulate = [&](const core::Contribution& c) { hooks.host->add(c); };
@@ -59,6 +71,7 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
     queues::waitUntil(channel.doorbell(), [&] { return interconnect.terminated() || channel.anyPending(); });
   }
   threads.joinAll();
+  if (watch.joinable()) watch.join();
   channel.drain(accumulate);
   for (int id = 0; id < processors; ++id) {
     reports[id].node = nodes[id]->stats();
@@ -66,6 +79,7 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context, std::
   }
   MachineRun run;
   run.processors = std::move(reports);
+  run.deadlock = std::move(deadlock);
   return run;
 }
 
