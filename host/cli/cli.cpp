@@ -387,8 +387,13 @@ std::vector<std::string> writeExtras(const RenderCommand& cmd, const core::Scene
   return written;
 }
 
-// --fifo-full lock stopped on a deadlock: the run's result. --stats gets the counts up to it (no image).
+// --fifo-full lock stopped on a deadlock: the run's result. --stats gets the counts up to it, --timeline
+// the states up to it (no image).
 int reportDeadlock(const RenderCommand& cmd, const MachineReport& report, const MachineDeadlocked& deadlock) {
+  if (!cmd.timelinePath.empty() && report.emulated) {
+    writeChart(timelineChart(report, deadlock.what()), ensureParent(cmd.timelinePath));
+    std::cout << "wrote " << cmd.timelinePath << '\n';
+  }
   if (!cmd.statsPath.empty()) {
     nlohmann::json json{{"machine", machineJson(report)}};
     if (report.emulated) json["simulated"] = emulatedJson(report);

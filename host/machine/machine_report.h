@@ -26,7 +26,9 @@ struct ProcessorReport {
 };
 
 // A run in simulated time (the SimGrid engine): the emulated machine's clock.
-enum class ProcessorState : std::uint8_t { Computing, Blocked, Idle };
+// Blocked: waiting with rays for a full neighbour (locked, under --fifo-full lock). Forwarding: its node's
+// communication task relaying others' messages (store and forward), on the same CPU.
+enum class ProcessorState : std::uint8_t { Computing, Blocked, Idle, Forwarding };
 struct StateInterval {
   double start = 0, end = 0;  // simulated seconds
   std::uint32_t processor = 0;

@@ -16,6 +16,8 @@ const char* stateName(ProcessorState s) {
       return "blocked";
     case ProcessorState::Idle:
       return "idle";
+    case ProcessorState::Forwarding:
+      return "forwarding";
   }
   return "?";
 }
@@ -120,9 +122,13 @@ TimelineChart timelineChart(const MachineReport& report, const std::string& capt
   chart.title = fmt::format("Processor states over simulated time ({})", run.platform);
   chart.caption = caption;
   chart.time.label = "simulated time (s)";
-  chart.states = {stateName(ProcessorState::Computing), stateName(ProcessorState::Blocked),
-                  stateName(ProcessorState::Idle)};
-  for (const ProcessorReport& p : report.processors) chart.rows.push_back({fmt::format("P{}", p.node.id), {}});
+  // In ProcessorState's order; forwarding, on the same CPU as the rest, is drawn over them.
+  const bool locks = fifoFullFor(report.settings) == node::FifoFull::Lock;
+  chart.states = {stateName(ProcessorState::Computing),
+                  locks ? "locked (full FIFO)" : "blocked (rays waiting for room)",
+                  stateName(ProcessorState::Idle), stateName(ProcessorState::Forwarding)};
+  for (const ProcessorReport& p : report.processors)
+    chart.rows.push_back({fmt::format("P{}", p.node.id), {}});
   for (const StateInterval& i : run.timeline)
     chart.rows[i.processor].intervals.push_back({i.start, i.end, std::size_t(i.state)});
   return chart;

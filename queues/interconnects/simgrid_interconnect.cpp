@@ -1,6 +1,7 @@
 #include "queues/interconnects/simgrid_interconnect.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "node/scheduling.h"
 
@@ -140,7 +141,8 @@ SimGridInterconnect<Real>::SimGridInterconnect(const node::RegionMap& regions, S
       processorAt_(wiring_.hosts.size(), -1),
       mutex_(s4u::Mutex::create()),
       relaySeconds_(wiring_.hosts.size(), 0.0),
-      relayed_(wiring_.hosts.size(), 0) {
+      relayed_(wiring_.hosts.size(), 0),
+      lastRelay_(wiring_.hosts.size(), SIZE_MAX) {
   for (int p = 0; p < regions.processors(); ++p) {
     processorAt_.at(wiring_.cubeNode.at(p)) = p;
     endpoints_.push_back(std::make_unique<Endpoint>(*this, p));
@@ -210,7 +212,15 @@ void SimGridInterconnect<Real>::communicationTask(std::uint32_t cubeNode) {
     }
     const double start = s4u::Engine::get_clock();
     s4u::this_actor::execute(wiring_.relayFlops);  // store and forward, on this node's CPU
-    relaySeconds_[cubeNode] += s4u::Engine::get_clock() - start;
+    const double end = s4u::Engine::get_clock();
+    relaySeconds_[cubeNode] += end - start;
+    std::size_t& last = lastRelay_[cubeNode];
+    if (last != SIZE_MAX && relayIntervals_[last].end == start) {
+      relayIntervals_[last].end = end;
+    } else {
+      last = relayIntervals_.size();
+      relayIntervals_.push_back({cubeNode, start, end});
+    }
     ++relayed_[cubeNode];
     route(cubeNode, std::move(packet));
   }

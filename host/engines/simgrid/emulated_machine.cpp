@@ -289,11 +289,13 @@ void simulate(SimulationInput in, PipeWriter& out) {
         deadlockOf(cycle, in.context.regions, [&](int from, int to) { return net.raysIn(from, to); });
     for (int p : cycle) deadlock.simulatedSeconds = std::max(deadlock.simulatedSeconds, waiting[p].since);
     makespan = s4u::Engine::get_clock();
-    for (int p = 0; p < processors; ++p)  // the waits the deadlock left open
-      if (waiting[p].since >= 0)
-        timelines[p].add(std::uint32_t(p),
-                         waiting[p].blocked ? ProcessorState::Blocked : ProcessorState::Idle,
-                         waiting[p].since, makespan);
+    for (int p = 0; p < processors; ++p) {  // the waits the deadlock left open, to its end
+      if (waiting[p].since < 0) continue;
+      const bool blocked = waiting[p].blocked;
+      (blocked ? reports[p].blockedSeconds : reports[p].idleSeconds) += makespan - waiting[p].since;
+      timelines[p].add(std::uint32_t(p), blocked ? ProcessorState::Blocked : ProcessorState::Idle,
+                       waiting[p].since, makespan);
+    }
     out.value(Record::Deadlock);
     out.vector(deadlock.cycle);
     out.value(deadlock.simulatedSeconds);
@@ -321,6 +323,12 @@ void simulate(SimulationInput in, PipeWriter& out) {
     auto part = t.take();
     run.timeline.insert(run.timeline.end(), part.begin(), part.end());
   }
+  std::vector<int> processorAt(wiring.hosts.size(), -1);
+  for (int p = 0; p < processors; ++p) processorAt[in.cubeNode[p]] = p;
+  for (const queues::RelayInterval& r : net.relayIntervals())
+    if (processorAt[r.cubeNode] >= 0)
+      run.timeline.push_back(
+          {r.start, r.end, std::uint32_t(processorAt[r.cubeNode]), ProcessorState::Forwarding});
   run.wallSeconds = secondsSince(wallStart);
   out.value(Record::Reports);
   out.vector(reports);
