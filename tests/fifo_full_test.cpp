@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/spd/balls.h"
+#include "host/prepare/machine_checks.h"
 #include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
@@ -140,6 +141,20 @@ TEST(FifoFull, ThreadsDeadlockIsDetectedAndStopsTheMachine) {
     EXPECT_GT(d->wallSeconds, 0);
   }
   EXPECT_EQ(deadlocks, 1) << "three runs at capacity 1 all completed: no deadlock was constructed";
+}
+
+// MPI ranks do not lock yet: asking is an error that says what to use, before anything runs.
+TEST(FifoFull, LockingOverMpiIsRefusedWithAMessage) {
+  const core::Scene scene = core::makeBalls(1);
+  const core::View view(scene.camera, 32, 32, core::Sampling::Centers);
+  MachineSettings m = locking(uniformGrid(2, 2, 128));
+  m.mpi = true;
+  try {
+    requireMachineFits(m, view);
+    ADD_FAILURE() << "accepted --fifo-full lock over MPI";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--fifo-full overflow"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FifoFull, LockCycleFindsTheCycleAndNothingElse) {

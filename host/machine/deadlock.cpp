@@ -37,8 +37,8 @@ std::string describe(const Deadlock& deadlock) {
   std::string path, fifos;
   for (const LockedFifo& f : deadlock.cycle) {
     path += fmt::format("{} -> ", f.from);
-    fifos += fmt::format("{}{} to {} through its {} face, {} rays", fifos.empty() ? "" : "; ", f.from, f.to,
-                         faceName(f.face), f.rays);
+    fifos += fmt::format("{}{} to {} through its {} face, full at {} ray{}", fifos.empty() ? "" : "; ",
+                         f.from, f.to, faceName(f.face), f.rays, f.rays == 1 ? "" : "s");
   }
   if (!deadlock.cycle.empty()) path += std::to_string(deadlock.cycle.front().from);
   std::string when;
