@@ -56,6 +56,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
       overflow_(neighbours_.size()),
       faceOf_(facesTowardNeighbours(context.regions, setup_.id)),
       inbox_(scheduling::kInboxBatch),
+      locks_(context.fifoFull == FifoFull::Lock),
       memoStamp_(structure_ == CellStructure::Paper ? memosFor(setup_) : 0, 0),
       memoT_(memoStamp_.size(), 0.0),
       carriesAhead_(structure_ == CellStructure::Bvh && setup_.database->inPlace != nullptr),
@@ -92,6 +93,7 @@ Step LogicalProcessor<Real>::step(int primaries) {
 template <class Real>
 Step LogicalProcessor<Real>::stepOnce(int primaries) {
   if (transport_.terminated()) return Step::Terminated;
+  if (locks_) return lockingStep(primaries);
   bool progressed = flushOverflow();
   const std::size_t n = transport_.receive(inbox_);
   for (std::size_t k = 0; k < n; ++k) onReceived(inbox_[k]);
@@ -103,11 +105,67 @@ Step LogicalProcessor<Real>::stepOnce(int primaries) {
   return Step::Worked;
 }
 
+// 3.5.2 as the iPSC ran it (FifoFull::Lock): a send into a full FIFO locks the synthesis task until the
+// FIFO has room. Only then does it finish the evaluation it was in (the rays it spawned here), take rays
+// from its neighbours, one at a time so that a locked task takes none, and, when none came, shoot primaries.
+template <class Real>
+Step LogicalProcessor<Real>::lockingStep(int primaries) {
+  bool progressed = sendHeld();
+  if (!locked() && !local_.empty()) {
+    evaluateLocalRays();
+    progressed = true;
+  }
+  std::size_t n = 0;
+  while (!locked() && n < inbox_.size() && transport_.receive(std::span<Message>(inbox_.data(), 1)) == 1) {
+    onReceived(inbox_[0]);
+    ++n;
+  }
+  progressed |= n > 0;
+  if (n == 0 && !locked()) progressed |= shootIfAllowed(primaries);
+  publishLock();
+  reportBacklog();
+  if (!progressed) return locked() ? Step::Waiting : idleStep();
+  publishProgress();
+  return Step::Worked;
+}
+
+template <class Real>
+void LogicalProcessor<Real>::publishLock() {
+  lockedOn_.store(locked() ? neighbours_[held_.front().first] : -1, std::memory_order_release);
+}
+
+// FifoFull::Lock: the held rays in the order they were sent, until one finds its FIFO still full.
+template <class Real>
+bool LogicalProcessor<Real>::sendHeld() {
+  bool moved = false;
+  while (!held_.empty()) {
+    const auto& [slot, m] = held_.front();
+    if (transport_.trySend(neighbours_[slot], std::span<const Message>(&m, 1)) != 1) break;
+    countSent(slot, m);
+    held_.pop_front();
+    moved = true;
+  }
+  return moved;
+}
+
+// FifoFull::Lock: a send while locked waits behind the one that locked the task.
+template <class Real>
+void LogicalProcessor<Real>::sendOrLock(std::size_t slot, const Message& m) {
+  if (held_.empty()) {
+    if (transport_.trySend(neighbours_[slot], std::span<const Message>(&m, 1)) == 1)
+      return countSent(slot, m);
+    ++stats_.refusedPushes;
+    ++stats_.locks;
+  }
+  held_.emplace_back(slot, m);
+  stats_.overflowHighWater = std::max<std::uint64_t>(stats_.overflowHighWater, held_.size());
+}
+
 // Back-pressure (scheduling::kBacklogLimit, kMachineBacklogLimit): no new primary rays while rays wait for
 // room, here or, where the transport sees it, across the machine.
 template <class Real>
 bool LogicalProcessor<Real>::primariesAllowed() const {
-  return backlog() < scheduling::kBacklogLimit && !transport_.primariesHeld();
+  return !locked() && backlog() < scheduling::kBacklogLimit && !transport_.primariesHeld();
 }
 
 // Up to `primaries` more primary rays, each as back-pressure allows; counts the steps that found the machine
@@ -136,7 +194,7 @@ void LogicalProcessor<Real>::reportBacklog() {
 template <class Real>
 void LogicalProcessor<Real>::publishProgress() {
   segmentsEvaluated_.store(stats_.processed.totalRays(), std::memory_order_relaxed);
-  raySteps_.store(raySteps_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+  stepsWorked_.store(stepsWorked_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
 }
 
 template <class Real>
@@ -178,7 +236,7 @@ bool LogicalProcessor<Real>::shootNextPrimary() {
 // Rays spawned here that start in this region, depth first (keeps the local stack short).
 template <class Real>
 void LogicalProcessor<Real>::evaluateLocalRays() {
-  while (!local_.empty()) {
+  while (!local_.empty() && !locked()) {  // a locked task resumes them once unlocked
     const Message next = departing(local_.back(), setup_.id);
     local_.pop_back();
     evaluate(next, false);
@@ -438,6 +496,7 @@ void LogicalProcessor<Real>::send(Message m) {
   const int hop = context_.regions.nextHop(setup_.id, m.destination);
   const std::size_t slot = slotOf(hop);
   m.face = std::uint8_t(opposite(faceOf_[slot]));
+  if (locks_) return sendOrLock(slot, m);
   OverflowList<Message>& pending = overflow_[slot];
   if (pending.empty() && transport_.trySend(hop, std::span<const Message>(&m, 1)) == 1) {
     countSent(slot, m);
@@ -494,7 +553,7 @@ template <class Real>
 std::size_t LogicalProcessor<Real>::backlog() const {
   std::size_t waiting = 0;
   for (const auto& pending : overflow_) waiting += pending.size();
-  return waiting;
+  return waiting + held_.size();
 }
 
 template <class Real>
@@ -504,7 +563,7 @@ bool LogicalProcessor<Real>::primariesLeft() const {
 
 template <class Real>
 bool LogicalProcessor<Real>::passive() const {
-  if (primariesLeft() || !local_.empty()) return false;
+  if (primariesLeft() || !local_.empty() || locked()) return false;
   for (const auto& pending : overflow_)
     if (!pending.empty()) return false;
   return true;
@@ -531,7 +590,9 @@ Step LogicalProcessor<Real>::idleStep() {
 
 template <class Real>
 bool LogicalProcessor<Real>::readyToStep() const {
-  if (transport_.terminated() || transport_.anyIncoming()) return true;
+  if (transport_.terminated()) return true;
+  if (locked()) return transport_.canSend(neighbours_[held_.front().first]);  // nothing else moves it
+  if (transport_.anyIncoming()) return true;
   if (primariesLeft() && primariesAllowed()) return true;  // held back by the machine, and now let go
   for (std::size_t slot = 0; slot < overflow_.size(); ++slot)
     if (!overflow_[slot].empty() && transport_.canSend(neighbours_[slot])) return true;

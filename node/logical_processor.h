@@ -8,7 +8,9 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <deque>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/bvh.h"
@@ -79,6 +81,7 @@ struct NodeStats {
   std::uint64_t refusedPushes = 0;  // sends that found the neighbour's FIFO full
   std::uint64_t primariesHeld = 0;  // steps with primaries left that found the machine holding them back
   std::uint64_t overflowHighWater = 0;
+  std::uint64_t locks = 0;  // FifoFull::Lock: times the synthesis task locked on a full FIFO (3.5.2)
   std::uint64_t tokenVisits = 0;
   std::uint32_t tokenRounds = 0;  // node 0: token rounds started
 };
@@ -105,15 +108,18 @@ class LogicalProcessor {
   bool readyToStep() const;
   // Waiting on full neighbour FIFOs (3.6's locked processors), not merely idle.
   bool blocked() const { return backlog() > 0; }
+  // FifoFull::Lock: the processor whose full FIFO the synthesis task is locked on, or -1. Safe to read from
+  // another thread (the deadlock watch), as are stepsWorked(), steps that did anything (shot, received,
+  // evaluated or sent a ray) so far, and stepping(), whether a step is under way now (the stall watch,
+  // host/engines/stall_watch.h).
+  int lockedOn() const { return lockedOn_.load(std::memory_order_acquire); }
+  std::uint64_t stepsWorked() const { return stepsWorked_.load(std::memory_order_acquire); }
+  bool stepping() const { return stepping_.load(std::memory_order_relaxed); }
   // Counted so far; read between steps (a driver charges simulated time from it after every step).
   const NodeStats& stats() const { return stats_; }
   // Ray segments evaluated here (stats().processed.totalRays()) as of the last step that worked; safe to
   // read from another thread: the host's progress.
   std::uint64_t segmentsEvaluated() const { return segmentsEvaluated_.load(std::memory_order_relaxed); }
-  // For an engine's watchdog (host/engines/stall_watch.h), safe to read from another thread: steps that
-  // moved rays (shot, received, evaluated or sent one) so far, and whether a step is under way now.
-  std::uint64_t raySteps() const { return raySteps_.load(std::memory_order_relaxed); }
-  bool stepping() const { return stepping_.load(std::memory_order_relaxed); }
   // What the processor still holds (primaries, local rays, rays for full FIFOs, the token), for the error
   // a stalled machine ends with; read once its driver has stopped stepping it.
   std::string describeHeldWork() const;
@@ -139,6 +145,12 @@ class LogicalProcessor {
                      double& transmission);
   void deliver(const core::BasicRayOutcome<Real>& outcome);
   void shipContributions(const core::BasicRayOutcome<Real>& outcome);
+  // FifoFull::Lock (3.5.2)
+  Step lockingStep(int primaries);
+  bool locked() const { return !held_.empty(); }
+  void sendOrLock(std::size_t slot, const Message& message);
+  bool sendHeld();
+  void publishLock();
   // Communication task
   void send(Message message);
   void countSent(std::size_t slot, const Message& message);
@@ -170,7 +182,6 @@ class LogicalProcessor {
   long long nextPrimary_ = 0;
   std::size_t reportedBacklog_ = 0;                  // backlog() as last told the transport (countWaiting)
   std::atomic<std::uint64_t> segmentsEvaluated_{0};  // written by this node only, once per step that worked
-  std::atomic<std::uint64_t> raySteps_{0};           // likewise
   std::atomic<bool> stepping_{false};                // inside step()
   // Rays spawned here that start in this region, still to evaluate here: not messages, so that the message
   // each becomes is built field by field where evaluate reads it. A message built so and then copied whole
@@ -181,6 +192,13 @@ class LogicalProcessor {
   std::vector<OverflowList<Message>> overflow_;  // per neighbour: rays its full FIFO refused
   const std::vector<Face> faceOf_;               // per neighbour: the face of this region it lies across
   std::vector<Message> inbox_;
+  // FifoFull::Lock: the rays the locked synthesis task is sending, in the order it sent them, with their
+  // neighbour's slot: the first waits for room in a full FIFO, the others (the rest of the evaluation it
+  // was in: a few rays at most) behind it. Empty when not locked, and always with FifoFull::Overflow.
+  const bool locks_;
+  std::deque<std::pair<std::size_t, Message>> held_;
+  std::atomic<int> lockedOn_{-1};
+  std::atomic<std::uint64_t> stepsWorked_{0};
   core::BasicRayOutcome<Real> outcome_;
   core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
   // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again

@@ -54,6 +54,14 @@ inline constexpr std::size_t kThreadsFifoRays = 512;
 // emulated machine's steps shoot one, as the paper's synthesis task (3.5.2): its clock charges by step.
 inline constexpr int kPrimariesPerStep = 8;
 
+// Threads with FifoFull::Lock: how often the host looks for a cycle of processors locked on each other's
+// full FIFOs, and how long such a cycle must stand with none of its processors stepping, its FIFOs full,
+// before it is declared a deadlock. Proof needs only a period with no step: a locked processor whose FIFO
+// has room is rung awake and steps; the period is long so that a thread the OS left unscheduled (64 of
+// them share 2 cores) is not taken for a locked one, short so that the user hears of it within seconds.
+inline constexpr auto kDeadlockPoll = std::chrono::milliseconds(50);
+inline constexpr auto kDeadlockQuiet = std::chrono::milliseconds(1000);
+
 // How a waiting thread waits: spin a little (a handoff from the other core), yield so the thread that
 // would unblock it can run, then sleep on its doorbell.
 struct SpinThenYield {

@@ -209,6 +209,21 @@ TEST_F(Cli, StatsAreParseableJsonWithRayCounts) {
   EXPECT_GT(stats.at("rays").at("light").get<int>(), 0);
 }
 
+// --fifo-full lock on the emulated iPSC with FIFOs of one ray: a deadlock, always the same. It is the
+// run's result: exit code 4, the cycle on stderr, --stats holding it, and no image.
+TEST_F(Cli, ADeadlockIsReportedWithExitCodeFourAndInTheStats) {
+  const Outcome r =
+      run("render --balls 2 --size 48x48 --procs 4x4 --balance uniform --mode machine --emulate ipsc1 "
+          "--fifo-full lock --queue-capacity 1 --light-rays messages -q -o x.png --stats s.json");
+  EXPECT_EQ(r.exitCode, 4) << r.err;
+  EXPECT_NE(r.err.find("raycube: deadlock at "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("locked on a full FIFO"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.png")) << "no image from a run that stopped";
+  const nlohmann::json deadlock = nlohmann::json::parse(slurp(dir_ / "s.json")).at("machine").at("deadlock");
+  EXPECT_GE(deadlock.at("cycle").size(), 2u);
+  EXPECT_GT(deadlock.at("simulatedSeconds").get<double>(), 0);
+}
+
 // --cells picks how regions hold their objects; the image does not depend on it, the stats say which.
 TEST_F(Cli, CellStructuresRenderTheSameImage) {
   expectOneLineError("render --balls 1 --cells bogus -q -o x.png", {"--cells", "bogus"});
@@ -381,8 +396,8 @@ TEST_F(Cli, TradeoffWritesPlotAndReport) {
   EXPECT_EQ(redrawn.numbers, original.numbers);
 }
 
-// host/engines/engine_module.h: SimGrid and Open MPI are loaded only for the runs that use them, and their absence is
-// said in one line naming where the module was looked for.
+// host/engines/engine_module.h: SimGrid and Open MPI are loaded only for the runs that use them, and their
+// absence is said in one line naming where the module was looked for.
 TEST_F(Cli, EnginesModuleIsLoadedOnlyWhenARunNeedsIt) {
   const std::string missing = "RAYCUBE_ENGINES=" + quoted((dir_ / "nowhere" / "raycube_engines.so").string()) + " ";
   const Outcome threads = run("render --balls 1 --size 16x16 --mode machine --procs 2x2 -o x.png", missing);

@@ -8,6 +8,7 @@
 #include <deque>
 #include <map>
 #include <optional>
+#include <utility>
 
 #include "core/spd/balls.h"
 #include "host/render/framebuffer.h"
@@ -219,10 +220,85 @@ TEST_F(LogicalProcessorTest, AFullNeighbourBlocksTheSenderUntilItHasRoom) {
   EXPECT_TRUE(node0.readyToStep());
 }
 
+// 3.5.2's lock (FifoFull::Lock): the synthesis task that found its neighbour's FIFO full does nothing else,
+// takes no ray in, until one slot of that FIFO frees; then it sends the held ray and goes on. With an
+// overflow list (FifoFull::Overflow) the same sender keeps consuming what arrives.
+TEST_F(LogicalProcessorTest, AFullFifoLocksItsSenderExactlyUntilOneSlotFrees) {
+  for (const FifoFull flow : {FifoFull::Lock, FifoFull::Overflow}) {
+    const bool locks = flow == FifoFull::Lock;
+    SCOPED_TRACE(locks ? "lock" : "overflow");
+    MachineContext context = contextFor(2, 1);
+    context.fifoFull = flow;
+    FakeInterconnect net(context.regions, 1);
+    FakeTransport left(net, 0), right(net, 1);
+    LogicalProcessor<double> node0(context, setupFor(context, 0), left);
+    LogicalProcessor<double> node1(context, setupFor(context, 1), right);
+    // Node 0 alone, until the first send finds the one-ray FIFO to node 1 full.
+    while (node0.stats().refusedPushes == 0) ASSERT_EQ(node0.step(), Step::Worked);
+    EXPECT_TRUE(node0.blocked());
+    EXPECT_EQ(node0.lockedOn(), locks ? 1 : -1);
+    EXPECT_EQ(node0.stats().locks, locks ? 1u : 0u);
+    EXPECT_EQ(net.fifo(0, 1).size(), 1u);
+    // A ray for node 0 arrives (node 1 stepped with node 0's ray kept out of its way): the locked task
+    // leaves it in the FIFO, the other takes it.
+    const std::deque<Message> held = std::exchange(net.fifo(0, 1), {});
+    for (int k = 0; k < 100000 && net.fifo(1, 0).empty(); ++k) node1.step();
+    ASSERT_EQ(net.fifo(1, 0).size(), 1u);
+    net.fifo(0, 1) = held;
+    const NodeStats before = node0.stats();
+    const Step s = node0.step();
+    EXPECT_EQ(net.fifo(1, 0).size(), locks ? 1u : 0u);
+    if (locks) {
+      EXPECT_EQ(s, Step::Waiting);
+      EXPECT_FALSE(node0.readyToStep()) << "nothing but room in the full FIFO moves a locked task";
+      EXPECT_EQ(node0.stats().processed.totalRays(), before.processed.totalRays());
+      EXPECT_EQ(node0.stats().spawned, before.spawned) << "no primary ray shot while locked";
+      // Node 1 takes its ray in: exactly one slot frees, and node 0 fills it with the ray it held.
+      net.fifo(0, 1).pop_front();
+      ASSERT_TRUE(node0.readyToStep());
+      EXPECT_EQ(node0.step(), Step::Worked);
+      EXPECT_EQ(net.fifo(0, 1).size(), 1u);
+      EXPECT_GT(node0.stats().sent[std::size_t(Face::Right)], before.sent[std::size_t(Face::Right)]);
+      EXPECT_TRUE(net.fifo(1, 0).empty() || node0.lockedOn() == 1) << "unlocked, it takes in what arrived";
+    }
+  }
+}
+
+// Two processors locked on each other's full FIFOs: neither can ever step again (2.2's deadlock), and
+// both say on whom they wait.
+TEST_F(LogicalProcessorTest, TwoProcessorsLockedOnEachOthersFullFifosNeverStepAgain) {
+  MachineContext context = contextFor(2, 1);
+  context.fifoFull = FifoFull::Lock;
+  FakeInterconnect net(context.regions, 1);
+  FakeTransport left(net, 0), right(net, 1);
+  LogicalProcessor<double> node0(context, setupFor(context, 0), left);
+  LogicalProcessor<double> node1(context, setupFor(context, 1), right);
+  // Node 0 locks on node 1; then node 1, with node 0's ray kept out of its way, until it locks on node 0.
+  while (node0.lockedOn() != 1) ASSERT_EQ(node0.step(), Step::Worked);
+  const std::deque<Message> held = std::exchange(net.fifo(0, 1), {});
+  for (int k = 0; k < 100000 && node1.lockedOn() != 0; ++k) node1.step();
+  ASSERT_EQ(node1.lockedOn(), 0);
+  net.fifo(0, 1) = held;  // node 0's FIFO full again, node 1's full too
+  for (int k = 0; k < 100; ++k) {
+    EXPECT_EQ(node0.step(), Step::Waiting);
+    EXPECT_EQ(node1.step(), Step::Waiting);
+  }
+  EXPECT_FALSE(node0.readyToStep());
+  EXPECT_FALSE(node1.readyToStep());
+  EXPECT_EQ(node0.lockedOn(), 1);
+  EXPECT_EQ(node1.lockedOn(), 0);
+  EXPECT_FALSE(net.terminated);
+}
+
 TEST_F(LogicalProcessorTest, ProcessorsSteppedInAnyOrderAgreeWithTheReferenceAndFinishEveryRayOnce) {
-  for (const auto& [columns, rows, capacity] :
-       std::vector<std::tuple<int, int, std::size_t>>{{2, 1, 1}, {3, 2, 2}, {4, 4, 128}}) {
-    const MachineContext context = contextFor(columns, rows);
+  for (const auto& [columns, rows, capacity, flow] :
+       std::vector<std::tuple<int, int, std::size_t, FifoFull>>{{2, 1, 1, FifoFull::Overflow},
+                                                                {3, 2, 2, FifoFull::Overflow},
+                                                                {4, 4, 128, FifoFull::Overflow},
+                                                                {3, 2, 128, FifoFull::Lock},
+                                                                {4, 4, 128, FifoFull::Lock}}) {
+    MachineContext context = contextFor(columns, rows);
+    context.fifoFull = flow;
     FakeInterconnect net(context.regions, capacity);
     const int processors = context.regions.processors();
     std::vector<std::unique_ptr<FakeTransport>> transports;

@@ -46,6 +46,9 @@ namespace {
 
 // 16x16 is the paper's 256 processors squared; 64x64 leaves room without exhausting threads.
 constexpr int kMaxProcessorsPerSide = 64;
+// A render's exit codes beyond 0 (done), 1 (an error) and 2 (a usage error): 3, non-finite colours;
+// 4, the machine deadlocked (--fifo-full lock).
+constexpr int kDeadlockExitCode = 4;
 
 const std::map<std::string, RenderMode> kModes{{"reference", RenderMode::Reference},
                                                {"image-parallel", RenderMode::ImageParallel},
@@ -54,8 +57,10 @@ const std::map<std::string, node::LightRayMode> kLightRays{{"messages", node::Li
                                                            {"cone", node::LightRayMode::Cone},
                                                            {"pyramid", node::LightRayMode::Pyramid}};
 const std::map<std::string, node::CellStructure> kCellStructures{{"auto", node::CellStructure::Auto},
-                                                                  {"paper", node::CellStructure::Paper},
-                                                                  {"bvh", node::CellStructure::Bvh}};
+                                                                 {"paper", node::CellStructure::Paper},
+                                                                 {"bvh", node::CellStructure::Bvh}};
+const std::map<std::string, node::FifoFull> kFifoFull{{"overflow", node::FifoFull::Overflow},
+                                                      {"lock", node::FifoFull::Lock}};
 const std::map<std::string, Balance> kBalances{
     {"auto", Balance::Auto}, {"uniform", Balance::Uniform}, {"bsp", Balance::Bsp}};
 const std::map<std::string, LoadMetric> kLoadMetrics{{"rays", LoadMetric::Rays}, {"cost", LoadMetric::Cost}};
@@ -92,6 +97,7 @@ struct RenderCommand {
   std::string reportPath;
   std::string lightRays = "pyramid";
   std::string cells = "auto";
+  std::string fifoFull;  // empty: the engine's own (fifoFullFor)
   std::string balance = "auto";
   std::string loadMetric = "cost";
   std::string emulate;
@@ -120,6 +126,7 @@ MachineSettings machineSettingsOf(const RenderCommand& cmd) {
   MachineSettings machine = cmd.machine;
   machine.lightRays = kLightRays.at(cmd.lightRays);
   machine.cells = kCellStructures.at(cmd.cells);
+  if (!cmd.fifoFull.empty()) machine.fifoFull = kFifoFull.at(cmd.fifoFull);
   machine.balance = kBalances.at(cmd.balance);
   machine.loadMetric = kLoadMetrics.at(cmd.loadMetric);
   machine.emulate = emulatedPlatform(cmd);
@@ -300,6 +307,7 @@ std::vector<std::pair<std::string, std::string>> settingsOf(const RenderCommand&
                      {"sub-sampling window", std::to_string(cmd.machine.subsampleWindow)},
                      {"light rays", cmd.lightRays},
                      {"FIFO capacity", std::to_string(fifoRaysFor(cmd.machine))},
+                     {"full FIFO", cmd.fifoFull.empty() ? "engine's own" : cmd.fifoFull},
                      {"cells", cmd.cells},
                      {"cell level", std::to_string(cmd.machine.cellLevel)}});
   return s;
@@ -379,6 +387,23 @@ std::vector<std::string> writeExtras(const RenderCommand& cmd, const core::Scene
   return written;
 }
 
+// --fifo-full lock stopped on a deadlock: the run's result. --stats gets the counts up to it, --timeline
+// the states up to it (no image).
+int reportDeadlock(const RenderCommand& cmd, const MachineReport& report, const MachineDeadlocked& deadlock) {
+  if (!cmd.timelinePath.empty() && report.emulated) {
+    writeChart(timelineChart(report, deadlock.what()), ensureParent(cmd.timelinePath));
+    std::cout << "wrote " << cmd.timelinePath << '\n';
+  }
+  if (!cmd.statsPath.empty()) {
+    nlohmann::json json{{"machine", machineJson(report)}};
+    if (report.emulated) json["simulated"] = emulatedJson(report);
+    writeJson(json, cmd.statsPath);
+    std::cout << "wrote " << cmd.statsPath << '\n';
+  }
+  std::cerr << "raycube: " << deadlock.what() << '\n';
+  return kDeadlockExitCode;
+}
+
 int runRender(const RenderCommand& cmd) {
   // Everything that can be checked before the scene is read is: a typo fails at once, not after a render.
   const bool machineMode = kModes.at(cmd.mode) == RenderMode::Machine;
@@ -410,7 +435,11 @@ int runRender(const RenderCommand& cmd) {
     scene.emplace(loadScene(cmd));
     const RenderSettings settings = renderSettingsOf(cmd, *scene);
     progress.phase("preprocessing");
-    result.emplace(render(*scene, cmd, settings, report));
+    try {
+      result.emplace(render(*scene, cmd, settings, report));
+    } catch (const MachineDeadlocked& deadlock) {
+      return reportDeadlock(cmd, *report, deadlock);
+    }
     progress.phase("writing");
     written = writeOutputs(result->image, *scene, cmd.output);
     const std::vector<std::string> extras = writeExtras(cmd, *scene, settings, *result, report);
@@ -482,6 +511,13 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
           "--queue-capacity", [&cmd](const std::size_t& rays) { cmd.machine.queueCapacity = rays; },
           "Rays per face FIFO: 512 on threads; the iPSC's 128 in emulated time and over MPI")
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 20));
+  render
+      ->add_option("--fifo-full", cmd.fifoFull,
+                   "What a send into a full FIFO does: overflow (the ray waits in a list while the processor "
+                   "goes on consuming; the default) | lock (3.5.2: the synthesis task locks until the FIFO "
+                   "has room; a cycle of full FIFOs is a deadlock, reported with exit code 4). Threads and "
+                   "emulated machines")
+      ->transform(CLI::IsMember(keysOf(kFifoFull), CLI::ignore_case));
   render
       ->add_option(
           "--cells", cmd.cells,

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -81,11 +82,12 @@ struct RankResults {
 std::vector<char> encodeResults(const RankResults& results);
 RankResults decodeResults(std::span<const char> bytes);
 
-// What the simulation sends back when its machine has terminated (host/engines/simgrid/emulated_machine.cpp),
-// over its pipe: the processors' reports and the emulated run.
+// What the simulation sends back when its machine has terminated or deadlocked
+// (host/engines/simgrid/emulated_machine.cpp), over its pipe: the processors' reports, the emulated run and
+// the deadlock, if any.
 template <class Sink>
 void writeEmulatedResults(WireEncoder<Sink>& out, const std::vector<ProcessorReport>& processors,
-                          const EmulatedRun& run) {
+                          const EmulatedRun& run, const std::optional<Deadlock>& deadlock) {
   static_assert(std::is_trivially_copyable_v<ProcessorReport>);
   out.vector(processors);
   out.string(run.platform);
@@ -95,6 +97,11 @@ void writeEmulatedResults(WireEncoder<Sink>& out, const std::vector<ProcessorRep
   out.value(run.wallSeconds);
   out.vector(run.links);
   out.vector(run.timeline);
+  out.value(deadlock.has_value());
+  if (deadlock) {
+    out.vector(deadlock->cycle);
+    out.value(deadlock->simulatedSeconds);
+  }
 }
 
 template <class Source>
@@ -110,6 +117,11 @@ MachineRun readEmulatedResults(WireDecoder<Source>& in) {
   run.links = in.template vector<LinkTraffic>();
   run.timeline = in.template vector<StateInterval>();
   machine.emulated = std::move(run);
+  if (in.template value<bool>()) {
+    machine.deadlock.emplace();
+    machine.deadlock->cycle = in.template vector<LockedFifo>();
+    machine.deadlock->simulatedSeconds = in.template value<double>();
+  }
   return machine;
 }
 

@@ -23,13 +23,13 @@ class StallWatch {
   StallWatch(std::size_t processors, std::chrono::milliseconds period)
       : period_(period), seen_(processors, 0), since_(Clock::now()) {}
 
-  // raySteps[p]: processor p's steps that moved rays so far. Whether the machine has gone a whole period
-  // without any of them moving.
-  template <class RayStepsOf>
-  bool stalled(RayStepsOf&& raySteps) {
+  // stepsWorked(p): processor p's steps that moved rays so far (LogicalProcessor::stepsWorked). Whether the
+  // machine has gone a whole period without any of them moving.
+  template <class StepsWorkedOf>
+  bool stalled(StepsWorkedOf&& stepsWorked) {
     bool moved = false;
     for (std::size_t p = 0; p < seen_.size(); ++p)
-      if (const std::uint64_t now = raySteps(p); now != seen_[p]) {
+      if (const std::uint64_t now = stepsWorked(p); now != seen_[p]) {
         seen_[p] = now;
         moved = true;
       }

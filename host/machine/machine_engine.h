@@ -26,7 +26,9 @@ struct EngineHooks {
 struct MachineRun {
   std::vector<ProcessorReport> processors;
   std::optional<EmulatedRun> emulated;  // engines with a clock of their own
-  std::optional<MpiRun> mpi;  // engines spread over processes
+  std::optional<MpiRun> mpi;            // engines spread over processes
+  // node::FifoFull::Lock: the cycle of locked processors the run stopped on (the counts are up to it).
+  std::optional<Deadlock> deadlock;
 };
 
 template <class Real>

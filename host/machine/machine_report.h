@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <vector>
+#include "host/machine/deadlock.h"
 
 #include "host/machine/machine_settings.h"
 #include "node/logical_processor.h"
@@ -25,7 +26,9 @@ struct ProcessorReport {
 };
 
 // A run in simulated time (the SimGrid engine): the emulated machine's clock.
-enum class ProcessorState : std::uint8_t { Computing, Blocked, Idle };
+// Blocked: waiting with rays for a full neighbour (locked, under --fifo-full lock). Forwarding: its node's
+// communication task relaying others' messages (store and forward), on the same CPU.
+enum class ProcessorState : std::uint8_t { Computing, Blocked, Idle, Forwarding };
 struct StateInterval {
   double start = 0, end = 0;  // simulated seconds
   std::uint32_t processor = 0;
@@ -94,7 +97,8 @@ struct MachineReport {
   std::uint32_t tokenRounds = 0;  // started by processor 0
   std::optional<EmulatedRun> emulated;
   std::optional<MpiRun> mpi;
-  std::uint64_t tokenPasses = 0;  // token visits over all processors
+  std::uint64_t tokenPasses = 0;     // token visits over all processors
+  std::optional<Deadlock> deadlock;  // --fifo-full lock: the run stopped there; the counts are up to it
 };
 
 }  // namespace raycube::host

@@ -45,6 +45,8 @@ struct MachineSettings {
   LoadMetric loadMetric = LoadMetric::Cost;
   // Rays per face FIFO (3.5.2); none: the engine's own (fifoRaysFor).
   std::optional<std::size_t> queueCapacity;
+  // What a send into a full FIFO does (3.5.2); none: the engine's own (fifoFullFor).
+  std::optional<node::FifoFull> fifoFull;
   // How each region holds its objects. Auto: a BVH in every region (node::chosenFor), but the paper's
   // cells whenever the machine is emulated, whose costs were fitted to them (table 2).
   node::CellStructure cells = node::CellStructure::Auto;
@@ -79,6 +81,12 @@ struct MachineSettings {
 inline std::size_t fifoRaysFor(const MachineSettings& machine) {
   if (machine.queueCapacity) return *machine.queueCapacity;
   return machine.emulate || machine.mpi ? queues::kPaperFifoCapacity : node::scheduling::kThreadsFifoRays;
+}
+
+// The flow control of a run: the one asked for, or the engine's own: an overflow list everywhere, so that a
+// run never deadlocks unless asked to lock as the paper's machine did.
+inline node::FifoFull fifoFullFor(const MachineSettings& machine) {
+  return machine.fifoFull.value_or(node::FifoFull::Overflow);
 }
 
 }  // namespace raycube::host

@@ -97,6 +97,7 @@ void reportRun(MachineRun run, const std::vector<double>& estimatedLoad, const L
   out.subsampledRays = load.raysTraced;
   out.emulated = std::move(run.emulated);
   out.mpi = std::move(run.mpi);
+  out.deadlock = std::move(run.deadlock);
   for (const ProcessorReport& pr : processors) {
     result.counters += pr.node.processed;
     out.tokenPasses += pr.node.tokenVisits;
@@ -179,6 +180,7 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
   ScreenPartition partition = partitionScreen(view, load, machine, coresSharedBy(machine));
   node::MachineContext context{
       view, settings.shading, std::move(partition.regions), std::move(sceneBounds), {}};
+  context.fifoFull = fifoFullFor(machine);
   seconds.partitioning = laps.next();
   progress.phase("pruning");
   const SpatialQueries spatial = queries.get();
@@ -238,6 +240,7 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   // The engine's own FIFO capacity made explicit, for the engine and the report.
   MachineSettings machine = asked;
   machine.queueCapacity = fifoRaysFor(asked);
+  machine.fifoFull = fifoFullFor(asked);
   SynthesisClock clock{Clock::now(), Clock::now(), Clock::now()};
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
@@ -278,6 +281,7 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   out.contributionsAccumulated = accumulator.count();
   reportRun(std::move(run), host.estimates.loads, host.load, sizeof(node::BasicRayMessage<Real>), result,
             out);
+  if (out.deadlock) throw MachineDeadlocked(*out.deadlock);  // the report holds it, for --stats
   return result;
 }
 

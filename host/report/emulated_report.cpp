@@ -16,6 +16,8 @@ const char* stateName(ProcessorState s) {
       return "blocked";
     case ProcessorState::Idle:
       return "idle";
+    case ProcessorState::Forwarding:
+      return "forwarding";
   }
   return "?";
 }
@@ -35,6 +37,21 @@ double blockedShare(const MachineReport& report) {
   return total > 0 ? blocked / total : 0;
 }
 
+std::vector<double> blockedShareByTenth(const MachineReport& report) {
+  const EmulatedRun& run = simulatedOf(report);
+  constexpr int kParts = 10;
+  std::vector<double> blocked(kParts, 0.0);
+  const double part = run.makespan / kParts;
+  if (part <= 0 || report.processors.empty()) return blocked;
+  for (const StateInterval& i : run.timeline) {
+    if (i.state != ProcessorState::Blocked) continue;
+    for (int k = std::max(0, int(i.start / part)); k < kParts && k * part < i.end; ++k)
+      blocked[std::size_t(k)] += std::max(0.0, std::min(i.end, (k + 1) * part) - std::max(i.start, k * part));
+  }
+  for (double& b : blocked) b /= part * double(report.processors.size());
+  return blocked;
+}
+
 std::string emulatedTable(const MachineReport& report) {
   const EmulatedRun& run = simulatedOf(report);
   std::uint64_t hostBytes = 0;
@@ -46,7 +63,9 @@ std::string emulatedTable(const MachineReport& report) {
       "messages/s)\n",
       run.platform, run.makespan, run.rayMessages, hostBytes, 100 * blockedShare(report), run.wallSeconds,
       run.wallSeconds > 0 ? double(run.rayMessages) / run.wallSeconds : 0.0);
-  text += "  node  computing  forwarding    blocked       idle   (simulated seconds)\n";
+  text += "  blocked share by tenth of the makespan:";
+  for (double share : blockedShareByTenth(report)) text += fmt::format(" {:.0f}%", 100 * share);
+  text += "\n  node  computing  forwarding    blocked       idle   (simulated seconds)\n";
   for (const ProcessorReport& p : report.processors)
     text += fmt::format("  {:>4} {:>10.3f} {:>11.3f} {:>10.3f} {:>10.3f}\n", p.node.id, p.computeSeconds,
                         p.forwardSeconds, p.blockedSeconds, p.idleSeconds);
@@ -68,10 +87,15 @@ nlohmann::json emulatedJson(const MachineReport& report) {
                      {"to", l.to == kHostNode ? nlohmann::json("host") : nlohmann::json(l.to)},
                      {"messages", l.messages},
                      {"bytes", l.bytes}});
-  return {{"platform", run.platform},       {"makespanSeconds", run.makespan},
-          {"rayMessages", run.rayMessages}, {"blockedShare", blockedShare(report)},
-          {"wallSeconds", run.wallSeconds}, {"tokenRounds", report.tokenRounds},
-          {"processors", processors},       {"links", links}};
+  return {{"platform", run.platform},
+          {"makespanSeconds", run.makespan},
+          {"rayMessages", run.rayMessages},
+          {"blockedShare", blockedShare(report)},
+          {"blockedShareByTenth", blockedShareByTenth(report)},
+          {"wallSeconds", run.wallSeconds},
+          {"tokenRounds", report.tokenRounds},
+          {"processors", processors},
+          {"links", links}};
 }
 
 void writeChromeTrace(const MachineReport& report, const std::filesystem::path& path) {
@@ -98,9 +122,13 @@ TimelineChart timelineChart(const MachineReport& report, const std::string& capt
   chart.title = fmt::format("Processor states over simulated time ({})", run.platform);
   chart.caption = caption;
   chart.time.label = "simulated time (s)";
-  chart.states = {stateName(ProcessorState::Computing), stateName(ProcessorState::Blocked),
-                  stateName(ProcessorState::Idle)};
-  for (const ProcessorReport& p : report.processors) chart.rows.push_back({fmt::format("P{}", p.node.id), {}});
+  // In ProcessorState's order; forwarding, on the same CPU as the rest, is drawn over them.
+  const bool locks = fifoFullFor(report.settings) == node::FifoFull::Lock;
+  chart.states = {stateName(ProcessorState::Computing),
+                  locks ? "locked (full FIFO)" : "blocked (rays waiting for room)",
+                  stateName(ProcessorState::Idle), stateName(ProcessorState::Forwarding)};
+  for (const ProcessorReport& p : report.processors)
+    chart.rows.push_back({fmt::format("P{}", p.node.id), {}});
   for (const StateInterval& i : run.timeline)
     chart.rows[i.processor].intervals.push_back({i.start, i.end, std::size_t(i.state)});
   return chart;

@@ -12,6 +12,9 @@ namespace raycube::host {
 
 // Share of the processors' time (makespan x processors) spent blocked on full FIFOs (3.6's "locked").
 double blockedShare(const MachineReport& report);
+// 3.7's saturation as it evolves: per tenth of the makespan, the share of the processors' time spent
+// blocked (locked on a full FIFO under --fifo-full lock), from the timeline.
+std::vector<double> blockedShareByTenth(const MachineReport& report);
 std::string emulatedTable(const MachineReport& report);
 nlohmann::json emulatedJson(const MachineReport& report);
 // Chrome trace-event JSON (Perfetto, chrome://tracing): one track per processor, one slice per state.

@@ -169,12 +169,22 @@ nlohmann::json machineJson(const MachineReport& report) {
                           {"leftScene", n.leftScene},
                           {"refusedPushes", n.refusedPushes},
                           {"overflowHighWater", n.overflowHighWater},
+                          {"locks", n.locks},
                           {"primariesHeld", n.primariesHeld},
                           {"idleSeconds", p.idleSeconds},
                           {"blockedSeconds", p.blockedSeconds},
                           {"tokenVisits", n.tokenVisits}});
   }
   const LoadBalance balance = loadBalanceOf(report);
+  nlohmann::json deadlock = nullptr;  // --fifo-full lock: the cycle the run stopped on
+  if (report.deadlock) {
+    deadlock = {{"message", describe(*report.deadlock)}, {"cycle", nlohmann::json::array()}};
+    if (report.deadlock->simulatedSeconds >= 0)
+      deadlock["simulatedSeconds"] = report.deadlock->simulatedSeconds;
+    if (report.deadlock->wallSeconds >= 0) deadlock["wallSeconds"] = report.deadlock->wallSeconds;
+    for (const LockedFifo& f : report.deadlock->cycle)
+      deadlock["cycle"].push_back({{"from", f.from}, {"to", f.to}, {"face", int(f.face)}, {"rays", f.rays}});
+  }
   return {{"rows", report.settings.rows},
           {"balance", balanceName(report.settings.balance)},
           {"balanceAsked", balanceName(report.balanceAsked)},
@@ -208,6 +218,8 @@ nlohmann::json machineJson(const MachineReport& report) {
             {"costMinOverMean", balance.costMinOverMean}}},
           {"columns", report.settings.columns},
           {"queueCapacity", fifoRaysFor(report.settings)},
+          {"fifoFull", fifoFullFor(report.settings) == node::FifoFull::Lock ? "lock" : "overflow"},
+          {"deadlock", deadlock},
           {"cells", std::array{"auto", "paper", "bvh"}[std::size_t(report.settings.cells)]},
           {"cellLevel", report.settings.cellLevel},
           {"messageBytes", report.messageBytes},

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -40,13 +41,18 @@ std::vector<ScalingPoint> scalingStudy(const core::Scene& scene, const RenderSet
   for (int p : processors) {
     std::tie(machine.rows, machine.columns) = nearSquareGrid(p);
     MachineReport report;
-    renderMachine(scene, settings, machine, &report);
+    try {
+      renderMachine(scene, settings, machine, &report);
+    } catch (const MachineDeadlocked& deadlock) {
+      std::cerr << "scaling: " << p << " processors: " << deadlock.what() << '\n';
+    }
     ScalingPoint point;
     point.processors = p;
     point.rows = machine.rows;
     point.columns = machine.columns;
-    point.makespan = report.emulated->makespan;
+    point.makespan = report.deadlock ? std::nan("") : report.emulated->makespan;
     point.nodeSpeed = report.emulated->nodeSpeed;
+    if (report.deadlock) point.deadlockAt = report.deadlock->simulatedSeconds;
     point.blockedShare = blockedShare(report);
     point.rayMessages = report.emulated->rayMessages;
     point.wallSeconds = report.emulated->wallSeconds;
@@ -54,8 +60,9 @@ std::vector<ScalingPoint> scalingStudy(const core::Scene& scene, const RenderSet
     const ScalingPoint& base = points.front();
     points.back().speedup = base.makespan / point.makespan * base.processors;
     points.back().efficiency = points.back().speedup / p;
-    std::cerr << fmt::format("scaling: {} processors: {:.1f} simulated s ({:.1f} s wall)\n", p, point.makespan,
-                             point.wallSeconds);
+    if (!report.deadlock)
+      std::cerr << fmt::format("scaling: {} processors: {:.1f} simulated s ({:.1f} s wall)\n", p,
+                               point.makespan, point.wallSeconds);
   }
   return points;
 }
@@ -69,9 +76,15 @@ std::string scalingTable(const std::vector<ScalingPoint>& points, const core::Sc
   text += "  procs  grid     simulated s   speedup  efficiency  blocked  ray messages  wall s";
   text += paper ? "   paper s  paper eff.  ours/paper\n" : "\n";
   for (const ScalingPoint& p : points) {
-    text += fmt::format("  {:>5}  {:>2}x{:<3} {:>13.1f} {:>9.2f} {:>11.2f} {:>7.1f}% {:>13} {:>7.2f}", p.processors,
-                        p.rows, p.columns, p.makespan, p.speedup, p.efficiency, 100 * p.blockedShare,
-                        p.rayMessages, p.wallSeconds);
+    if (p.deadlockAt >= 0) {
+      text += fmt::format(
+          "  {:>5}  {:>2}x{:<3} deadlock at {:.1f} simulated s (--fifo-full lock); {:.1f}% blocked\n",
+          p.processors, p.rows, p.columns, p.deadlockAt, 100 * p.blockedShare);
+      continue;
+    }
+    text += fmt::format("  {:>5}  {:>2}x{:<3} {:>13.1f} {:>9.2f} {:>11.2f} {:>7.1f}% {:>13} {:>7.2f}",
+                        p.processors, p.rows, p.columns, p.makespan, p.speedup, p.efficiency,
+                        100 * p.blockedShare, p.rayMessages, p.wallSeconds);
     if (const auto published = kTable2Seconds.find(p.processors); paper && published != kTable2Seconds.end())
       text += fmt::format(" {:>9.0f} {:>11.2f} {:>11.2f}", published->second,
                           kTable2Seconds.at(1) / published->second / p.processors, p.makespan / published->second);
@@ -92,12 +105,14 @@ LineChart scalingPlot(const std::vector<ScalingPoint>& points, const core::Scene
   chart.y = {.label = "speed-up (simulated time of the smallest count / time)", .scale = AxisScale::Log};
   Series ours{.name = "raycube (simulated)"};
   for (const ScalingPoint& p : points) {
+    if (p.deadlockAt >= 0) continue;  // no time to plot
     ours.x.push_back(p.processors);
     ours.y.push_back(p.speedup);
     ours.pointLabels.push_back(fmt::format("{:.2f}", p.efficiency));
   }
   Series ideal{.name = "ideal (efficiency 1)"};
-  if (!points.empty()) ideal = {ideal.name, {ours.x.front(), ours.x.back()}, {ours.x.front(), ours.x.back()}, {}};
+  if (!ours.x.empty())
+    ideal = {ideal.name, {ours.x.front(), ours.x.back()}, {ours.x.front(), ours.x.back()}, {}};
   chart.series.push_back(std::move(ours));
   if (platform == "ipsc1" && isTable2Case(scene, settings)) {
     Series paper{.name = "Priol & Bouatouch, table 2 (iPSC/1)"};
@@ -115,7 +130,8 @@ LineChart scalingPlot(const std::vector<ScalingPoint>& points, const core::Scene
 void writeScalingCsv(const std::vector<ScalingPoint>& points, const std::filesystem::path& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the CSV", path.string()));
-  out << "processors,rows,columns,simulated_seconds,speedup,efficiency,blocked_share,ray_messages,wall_seconds\n";
+  out << "processors,rows,columns,simulated_seconds,speedup,efficiency,blocked_share,ray_messages,wall_"
+         "seconds\n";
   for (const ScalingPoint& p : points)
     out << fmt::format("{},{},{},{:.9g},{:.6g},{:.6g},{:.6g},{},{:.3f}\n", p.processors, p.rows, p.columns,
                        p.makespan, p.speedup, p.efficiency, p.blockedShare, p.rayMessages, p.wallSeconds);

@@ -21,6 +21,9 @@ struct ScalingPoint {
   double blockedShare = 0;  // of processor-time, waiting on full FIFOs
   std::uint64_t rayMessages = 0;
   double wallSeconds = 0;
+  // --fifo-full lock: the simulated instant the run deadlocked (host/machine/deadlock.h), -1 when it
+  // completed; makespan, speedup and efficiency are then NaN.
+  double deadlockAt = -1;
 };
 
 // The grid closest to square with rows x columns == processors (rows <= columns).

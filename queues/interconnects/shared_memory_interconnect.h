@@ -58,6 +58,8 @@ class SharedMemoryInterconnect {
   bool terminated() const { return terminated_.load(std::memory_order_acquire); }
   // The host's watchdog, on a machine that stalled: every processor's next step returns Terminated.
   void stop();
+  // Rays in the FIFO from processor `from` to its neighbour `to`: a snapshot any thread may take.
+  std::size_t raysIn(int from, int to) const { return queue(from, to)->size(); }
   // Saturation of the FIFOs a processor sends into, summed per face of the processor.
   QueueStats outgoingStats(int processor, node::Face face) const;
 

@@ -1,6 +1,7 @@
 #include "queues/interconnects/simgrid_interconnect.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "node/scheduling.h"
 
@@ -116,6 +117,7 @@ class SimGridInterconnect<Real>::Endpoint final : public node::BasicTransport<Re
   void arrive(const node::Token& t) { token_ = t; }
   std::vector<std::unique_ptr<Packet>> takeOutbox() { return std::exchange(outbox_, {}); }
   std::uint64_t contributionsSent() const { return contributionsSent_; }
+  std::size_t creditsUsed(int neighbour) const { return creditsUsed_[slotOf(neighbour)]; }
 
  private:
   std::size_t slotOf(int neighbour) const { return net_.regions_.neighbourSlot(id_, neighbour); }
@@ -137,7 +139,8 @@ SimGridInterconnect<Real>::SimGridInterconnect(const node::RegionMap& regions, S
       processorAt_(wiring_.hosts.size(), -1),
       mutex_(s4u::Mutex::create()),
       relaySeconds_(wiring_.hosts.size(), 0.0),
-      relayed_(wiring_.hosts.size(), 0) {
+      relayed_(wiring_.hosts.size(), 0),
+      lastRelay_(wiring_.hosts.size(), SIZE_MAX) {
   for (int p = 0; p < regions.processors(); ++p) {
     processorAt_.at(wiring_.cubeNode.at(p)) = p;
     endpoints_.push_back(std::make_unique<Endpoint>(*this, p));
@@ -209,7 +212,15 @@ void SimGridInterconnect<Real>::communicationTask(std::uint32_t cubeNode) {
     const double start = s4u::Engine::get_clock();
     // Store and forward, on this node's CPU: seconds at its host's speed.
     s4u::this_actor::execute(wiring_.relaySeconds * s4u::this_actor::get_host()->get_speed());
-    relaySeconds_[cubeNode] += s4u::Engine::get_clock() - start;
+    const double end = s4u::Engine::get_clock();
+    relaySeconds_[cubeNode] += end - start;
+    std::size_t& last = lastRelay_[cubeNode];
+    if (last != SIZE_MAX && relayIntervals_[last].end == start) {
+      relayIntervals_[last].end = end;
+    } else {
+      last = relayIntervals_.size();
+      relayIntervals_.push_back({cubeNode, start, end});
+    }
     ++relayed_[cubeNode];
     route(cubeNode, std::move(packet));
   }
@@ -239,6 +250,11 @@ void SimGridInterconnect<Real>::serveHost(core::ContributionSink& sink) {
     for (const core::Contribution& c : packet->contributions) sink.add(c);
     received += packet->contributions.size();
   }
+}
+
+template <class Real>
+std::size_t SimGridInterconnect<Real>::raysIn(int from, int to) const {
+  return endpoints_[from]->creditsUsed(to);
 }
 
 template <class Real>

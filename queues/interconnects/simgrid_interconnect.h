@@ -28,6 +28,12 @@ struct LinkTrafficCount {
   std::uint64_t messages = 0, bytes = 0;
 };
 
+// A stretch of simulated time a hypercube node's communication task spent relaying (store and forward).
+struct RelayInterval {
+  std::uint32_t cubeNode = 0;
+  double start = 0, end = 0;
+};
+
 struct SimGridWiring {
   std::size_t capacity = 128;              // rays per face FIFO
   std::vector<std::uint32_t> cubeNode;     // per processor: its node on the hypercube
@@ -65,9 +71,13 @@ class SimGridInterconnect {
   // ---- The host's actor: accumulates every block until every processor has finished and all arrived.
   void serveHost(core::ContributionSink& sink);
   bool terminated() const { return terminated_; }
+  // Rays processor `from` has sent its neighbour `to` that `to` has not taken in: its FIFO's occupancy.
+  std::size_t raysIn(int from, int to) const;
 
   double relaySeconds(std::uint32_t cubeNode) const { return relaySeconds_[cubeNode]; }
   std::uint64_t relayed(std::uint32_t cubeNode) const { return relayed_[cubeNode]; }
+  // Every relay, back-to-back ones of a node merged, in the order they ended.
+  const std::vector<RelayInterval>& relayIntervals() const { return relayIntervals_; }
   std::vector<LinkTrafficCount> traffic() const;
 
  private:
@@ -87,6 +97,8 @@ class SimGridInterconnect {
   bool terminated_ = false;
   std::vector<double> relaySeconds_;
   std::vector<std::uint64_t> relayed_;
+  std::vector<RelayInterval> relayIntervals_;
+  std::vector<std::size_t> lastRelay_;  // per node: its latest interval in relayIntervals_, or SIZE_MAX
   std::map<std::pair<std::int64_t, std::int64_t>, LinkTrafficCount> traffic_;
 };
 

@@ -162,10 +162,17 @@ class ChargedWork {
 
 // A processor's actor: step the node, charge the work the step counted, then ship what it produced (so
 // messages leave when the work that made them is done); wait in simulated time when there is nothing to do.
+// Where each processor's actor waits, if it does: since when, and whether locked on a full FIFO (3.6). What
+// a deadlock leaves them doing.
+struct Waiting {
+  double since = -1;  // -1: not waiting
+  bool blocked = false;
+};
+
 template <class Real>
 void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInterconnect<Real>& net, int id,
                           const CostTable& costs, double speedScale, ProcessorReport& report,
-                          std::vector<Timeline>& timelines) {
+                          std::vector<Timeline>& timelines, Waiting& waiting) {
   Timeline& timeline = timelines[std::size_t(id)];
   const ChargedWork charged(costs, speedScale);
   double counted = charged.flopsOf(node.stats());
@@ -184,7 +191,9 @@ void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInt
     if (step == node::Step::Worked) continue;
     const double start = s4u::Engine::get_clock();
     const bool blocked = node.blocked();
+    waiting = {start, blocked};
     net.waitFor(id, [&] { return node.readyToStep(); });
+    waiting = {};
     const double waited = s4u::Engine::get_clock() - start;
     (blocked ? report.blockedSeconds : report.idleSeconds) += waited;
     timeline.add(std::uint32_t(id), blocked ? ProcessorState::Blocked : ProcessorState::Idle, start,
@@ -251,6 +260,12 @@ EmulatedRun emulatedRunOf(const SimulationInput& in, const queues::SimGridInterc
     auto part = t.take();
     run.timeline.insert(run.timeline.end(), part.begin(), part.end());
   }
+  // The relaying a processor's host did for others (store and forward), drawn apart on its row.
+  std::vector<int> processorAt(cubeNodesFor(in.cubeNode), -1);
+  for (std::size_t p = 0; p < in.cubeNode.size(); ++p) processorAt[in.cubeNode[p]] = int(p);
+  for (const queues::RelayInterval& r : net.relayIntervals())
+    if (processorAt[r.cubeNode] >= 0)
+      run.timeline.push_back({r.start, r.end, std::uint32_t(processorAt[r.cubeNode]), ProcessorState::Forwarding});
   return run;
 }
 
@@ -277,10 +292,11 @@ void simulate(SimulationInput in, PipeWriter& out) {
   out.value(Record::SynthesisStarts);  // every node has subdivided its region
   std::vector<ProcessorReport> reports(static_cast<std::size_t>(processors));
   std::vector<Timeline> timelines(static_cast<std::size_t>(processors));
+  std::vector<Waiting> waiting(static_cast<std::size_t>(processors));
   int finished = 0;
   for (int p = 0; p < processors; ++p)
     s4u::Actor::create("processor-" + std::to_string(p), wiring.hosts[in.cubeNode[p]], [&, p] {
-      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, scale, reports[p], timelines);
+      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, scale, reports[p], timelines, waiting[p]);
       ++finished;
     });
   ContributionsToParent toParent(out, [&] {
@@ -297,14 +313,33 @@ void simulate(SimulationInput in, PipeWriter& out) {
   });
   net.startCommunicationTasks();
   engine.run();
-  requireCompleted(net.terminated(), finished, processors, hostDone);
+  // SimGrid ends a run where no actor can move as it ends a finished one (it says so on stderr): a cycle
+  // of processors locked on each other's full FIFOs (--fifo-full lock) is the run's result.
+  std::vector<int> lockedOn;
+  for (const auto& n : nodes) lockedOn.push_back(n->lockedOn());
+  const std::vector<int> cycle = net.terminated() ? std::vector<int>{} : lockCycle(lockedOn);
+  std::optional<Deadlock> deadlock;
+  if (!cycle.empty()) {
+    deadlock = deadlockOf(cycle, in.context.regions, [&](int from, int to) { return net.raysIn(from, to); });
+    for (int p : cycle) deadlock->simulatedSeconds = std::max(deadlock->simulatedSeconds, waiting[p].since);
+    makespan = s4u::Engine::get_clock();
+    for (int p = 0; p < processors; ++p) {  // the waits the deadlock left open, to its end
+      if (waiting[p].since < 0) continue;
+      const bool blocked = waiting[p].blocked;
+      (blocked ? reports[p].blockedSeconds : reports[p].idleSeconds) += makespan - waiting[p].since;
+      timelines[p].add(std::uint32_t(p), blocked ? ProcessorState::Blocked : ProcessorState::Idle,
+                       waiting[p].since, makespan);
+    }
+  } else {
+    requireCompleted(net.terminated(), finished, processors, hostDone);
+  }
   toParent.flush();
 
   EmulatedRun run = emulatedRunOf(in, net, nodes, *wiring.hosts[0], reports, timelines);
   run.makespan = makespan;
   run.wallSeconds = secondsSince(wallStart);
   out.value(Record::Reports);
-  writeEmulatedResults(out, reports, run);
+  writeEmulatedResults(out, reports, run, deadlock);
 }
 
 // The parent's side: the start of synthesis, contributions to the host's sink and progress as they come,

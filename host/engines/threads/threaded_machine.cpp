@@ -10,6 +10,7 @@
 #include "host/engines/node_thread.h"
 #include "host/engines/processor_thread.h"
 #include "host/engines/stall_watch.h"
+#include "host/engines/threads/deadlock_watch.h"
 #include "host/util/parallel_for.h"
 #include "node/scheduling.h"
 #include "queues/interconnects/jitter_transport.h"
@@ -86,11 +87,22 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context,
     });
   if (hooks.synthesisStarts) hooks.synthesisStarts();
   synthesis.count_down();
+  // --fifo-full lock: a deadlock is proved from here, and stops the machine as termination would.
+  std::optional<Deadlock> deadlock;
+  std::thread deadlockWatch;
+  if (context.fifoFull == node::FifoFull::Lock)
+    deadlockWatch = std::thread([&] {
+      deadlock = watchForDeadlock(
+          nodes, context.regions, queueCapacity_,
+          [&](int from, int to) { return interconnect.raysIn(from, to); },
+          [&] { return interconnect.terminated(); });
+      if (deadlock) interconnect.endpoint(0).announceTermination();
+    });
   // The host thread (3.5.1): accumulate contributions until the ring has proved termination.
   queues::ContributionChannel& channel = interconnect.hostChannel();
   auto accumulate = [&](const core::Contribution& c) { hooks.host->add(c); };
   std::vector<std::uint64_t> evaluated(nodes.size());
-  StallWatch watch(nodes.size(), stallPeriod_);
+  StallWatch stallWatch(nodes.size(), stallPeriod_);
   while (!interconnect.terminated()) {
     channel.drain(accumulate);
     if (hooks.progress) {
@@ -101,17 +113,21 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context,
     queues::waitUntilFor(
         channel.doorbell(), [&] { return interconnect.terminated() || channel.anyPending(); },
         stallLookEvery(stallPeriod_));
-    if (!interconnect.terminated() && watch.stalled([&](std::size_t p) { return nodes[p]->raySteps(); })) {
+    if (!interconnect.terminated() &&
+        stallWatch.stalled([&](std::size_t p) { return nodes[p]->stepsWorked(); })) {
       // A processor inside a step all that time cannot be stopped, nor its thread joined: the program ends.
-      if (const std::string busy = steppingProcessors(nodes); !busy.empty()) endStuck(watch.headline(), busy);
+      if (const std::string busy = steppingProcessors(nodes); !busy.empty())
+        endStuck(stallWatch.headline(), busy);
       interconnect.stop();
       threads.joinAll();
+      if (deadlockWatch.joinable()) deadlockWatch.join();
       throw std::runtime_error(
-          watch.headline() +
+          stallWatch.headline() +
           "; every processor waits (a ray or the termination token lost): " + heldWork(nodes));
     }
   }
   threads.joinAll();
+  if (deadlockWatch.joinable()) deadlockWatch.join();
   channel.drain(accumulate);
   for (int id = 0; id < processors; ++id) {
     reports[id].node = nodes[id]->stats();
@@ -120,6 +136,7 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context,
   }
   MachineRun run;
   run.processors = std::move(reports);
+  run.deadlock = std::move(deadlock);
   return run;
 }
 
