@@ -1,13 +1,13 @@
 #include "host/engines/simgrid/emulated_machine.h"
 
 #include <fmt/format.h>
-#include <simgrid/s4u.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstring>
 #include <functional>
+#include <simgrid/s4u.hpp>
 #include <stdexcept>
 #include <type_traits>
 
