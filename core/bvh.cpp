@@ -194,21 +194,42 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
   }
   nodes[index].box = bounds.template enclosingIn<Real>();
   const std::uint32_t count = end - begin;
-  int bestAxis = -1, bestBin = 0;
-  double bestCost = double(count);  // cost of a leaf, in object tests
-  double bestWeighted = std::numeric_limits<double>::infinity();  // the best split's areas times counts
   // A bin per object in small nodes (no cost to set up bins nothing falls in), kBins in large ones.
   const int bins = int(std::min<std::uint32_t>(count, kBins));
   const bool split = count > kLeafSize && depth < kMaxDepth;
-  // The three axes binned in one pass over the boxes (each box read once).
+  const Vec3 scale = binScale(centroids, bins);
+  Split best;
+  if (split) {
+    fillBins(items, begin, end, centroids, scale, bins, scratch);
+    best = cheapestSplit(scratch, scale, bins, count, bounds);
+  }
+  const int bestAxis = best.axis, bestBin = best.bin;
+  if (bestAxis < 0) {
+    nodes[index].first = begin;
+    nodes[index].count = count;
+    return index;
+  }
+  const double lo = centroids.lo[bestAxis], axisScale = scale[bestAxis];
+  const auto midIt = std::partition(items.begin() + begin, items.begin() + end, [&](const BuildItem& item) {
+    return binOf(item.centre[bestAxis], lo, axisScale, bins) <= bestBin;
+  });
+  const std::uint32_t mid = std::uint32_t(midIt - items.begin());
+  const std::uint32_t right = buildChildren(items, begin, mid, end, depth, scratch, nodes, spawnLevels);
+  nodes[index].first = right;
+  nodes[index].axis = std::uint8_t(bestAxis);
+  return index;
+}
+
+template <class Real>
+void BasicBvh<Real>::fillBins(const std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end,
+                              const Box& centroids, const Vec3& scale, int bins, Bins& scratch) {
   auto& binBoxes = scratch.boxes;
   auto& binCounts = scratch.counts;
-  for (int axis = 0; axis < 3 && split; ++axis) {
+  for (int axis = 0; axis < 3; ++axis) {
     std::fill_n(binBoxes[axis], bins, Box{});
     std::fill_n(binCounts[axis], kBins, 0u);  // all of them: a fixed length fills in two stores
   }
-  const Vec3 scale = binScale(centroids, bins);
-  for (std::uint32_t i = begin; i < end && split; ++i) {
+  for (std::uint32_t i = begin; i < end; ++i) {
     const Box& box = items[i].box;
     const Vec3& centre = items[i].centre;
     for (int axis = 0; axis < 3; ++axis) {
@@ -218,10 +239,18 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
       ++binCounts[axis][b];
     }
   }
-  for (int axis = 0; axis < 3 && split; ++axis) {
+}
+
+template <class Real>
+typename BasicBvh<Real>::Split BasicBvh<Real>::cheapestSplit(const Bins& scratch, const Vec3& scale, int bins,
+                                                             std::uint32_t count, const Box& bounds) {
+  Split best;
+  double bestCost = double(count);                                // cost of a leaf, in object tests
+  double bestWeighted = std::numeric_limits<double>::infinity();  // the best split's areas times counts
+  for (int axis = 0; axis < 3; ++axis) {
     if (!(scale[axis] > 0)) continue;
-    const Box* binBox = binBoxes[axis];
-    const std::uint32_t* binCount = binCounts[axis];
+    const Box* binBox = scratch.boxes[axis];
+    const std::uint32_t* binCount = scratch.counts[axis];
     double rightArea[kBins];
     std::uint32_t rightCount[kBins];
     Box acc;
@@ -246,21 +275,18 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
       if (cost < bestCost) {
         bestCost = cost;
         bestWeighted = weighted;
-        bestAxis = axis;
-        bestBin = b;
+        best.axis = axis;
+        best.bin = b;
       }
     }
   }
-  if (bestAxis < 0) {
-    nodes[index].first = begin;
-    nodes[index].count = count;
-    return index;
-  }
-  const double lo = centroids.lo[bestAxis], axisScale = scale[bestAxis];
-  const auto midIt = std::partition(items.begin() + begin, items.begin() + end, [&](const BuildItem& item) {
-    return binOf(item.centre[bestAxis], lo, axisScale, bins) <= bestBin;
-  });
-  const std::uint32_t mid = std::uint32_t(midIt - items.begin());
+  return best;
+}
+
+template <class Real>
+std::uint32_t BasicBvh<Real>::buildChildren(std::vector<BuildItem>& items, std::uint32_t begin,
+                                            std::uint32_t mid, std::uint32_t end, int depth, Bins& scratch,
+                                            std::vector<Node>& nodes, int spawnLevels) {
   std::uint32_t right;
   // Only a split into two large parts is worth a thread; past a lopsided one (a large sphere beside the
   // rest), the larger part may still split evenly further down.
@@ -284,9 +310,7 @@ std::uint32_t BasicBvh<Real>::build(std::vector<BuildItem>& items, std::uint32_t
     build(items, begin, mid, depth + 1, scratch, nodes, spawnLevels);
     right = build(items, mid, end, depth + 1, scratch, nodes, spawnLevels);
   }
-  nodes[index].first = right;
-  nodes[index].axis = std::uint8_t(bestAxis);
-  return index;
+  return right;
 }
 
 // The best t so far, in Real, limits the traversal; a float t converts to the Hit's double exactly.

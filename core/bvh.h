@@ -100,6 +100,21 @@ class BasicBvh {
   // appended once both are done: the layout of a build on one thread.
   std::uint32_t build(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end, int depth,
                       Bins& bins, std::vector<Node>& nodes, int spawnLevels);
+  // The three axes binned in one pass over the boxes of items [begin, end) (each box read once).
+  static void fillBins(const std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t end,
+                       const Box& centroids, const Vec3& scale, int bins, Bins& scratch);
+  // The split the surface-area heuristic prefers to a leaf of `count` objects: an axis (-1: none) and the
+  // last bin on its left side.
+  struct Split {
+    int axis = -1, bin = 0;
+  };
+  static Split cheapestSplit(const Bins& scratch, const Vec3& scale, int bins, std::uint32_t count,
+                             const Box& bounds);
+  // Builds the two children of a node split at `mid`, the right one on a thread of its own where it pays;
+  // returns the right child's index.
+  std::uint32_t buildChildren(std::vector<BuildItem>& items, std::uint32_t begin, std::uint32_t mid,
+                              std::uint32_t end, int depth, Bins& bins, std::vector<Node>& nodes,
+                              int spawnLevels);
   struct Restriction;
   std::uint32_t keep(const Restriction& r, std::uint32_t wholeNode);
   void gatherKept(const Restriction& r, std::uint32_t wholeNode, Box& bounds);

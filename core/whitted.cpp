@@ -42,8 +42,8 @@ namespace {
 // A reflected or refracted ray (3.4): from `origin` along the unit `direction`, one level deeper than its
 // parent, carrying its weight times `share`.
 template <class Real>
-BasicTracedRay<Real> secondaryRay(const BasicTracedRay<Real>& parent, RayKind kind, const Vec3Of<Real>& origin,
-                                  const Vec3Of<Real>& direction, Real share) {
+BasicTracedRay<Real> secondaryRay(const BasicTracedRay<Real>& parent, RayKind kind,
+                                  const Vec3Of<Real>& origin, const Vec3Of<Real>& direction, Real share) {
   BasicTracedRay<Real> spawned;
   spawned.ray.direction = direction;
   spawned.ray.origin = origin;
@@ -123,8 +123,8 @@ void Whitted::spawnLightRays(const BasicTracedRay<Real>& ray, const Material& m,
 
 // Section 3.4: the refracted ray (Snell's law) where the material transmits, and the reflected ray.
 template <class Real>
-void Whitted::spawnSecondaryRays(const BasicTracedRay<Real>& ray, const Material& m, const FacingHit<Real>& at,
-                                 BasicRayOutcome<Real>& out) const {
+void Whitted::spawnSecondaryRays(const BasicTracedRay<Real>& ray, const Material& m,
+                                 const FacingHit<Real>& at, BasicRayOutcome<Real>& out) const {
   using V = Vec3Of<Real>;
   const Real ks = Real(m.ks), transmission = Real(m.transmission);
   const V& d = ray.ray.direction;
@@ -138,13 +138,15 @@ void Whitted::spawnSecondaryRays(const BasicTracedRay<Real>& ray, const Material
     if (k < 0) {
       reflectCoeff += transmission;  // total internal reflection: the transmitted share is reflected
     } else if (worthSpawning(ray.coeff * transmission)) {
-      out.spawned.push_back(secondaryRay(ray, RayKind::Refracted, spawnOrigin(at.point, -at.geometricNormal, at.t),
-                                         V(glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n)), transmission));
+      out.spawned.push_back(
+          secondaryRay(ray, RayKind::Refracted, spawnOrigin(at.point, -at.geometricNormal, at.t),
+                       V(glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * n)), transmission));
     }
   }
   if (reflectCoeff > 0 && worthSpawning(ray.coeff * reflectCoeff)) {
     const V toViewer = -d;
-    out.spawned.push_back(secondaryRay(ray, RayKind::Reflected, spawnOrigin(at.point, at.geometricNormal, at.t),
+    out.spawned.push_back(secondaryRay(ray, RayKind::Reflected,
+                                       spawnOrigin(at.point, at.geometricNormal, at.t),
                                        V(glm::normalize(d + 2 * glm::dot(n, toViewer) * n)), reflectCoeff));
   }
 }

@@ -325,16 +325,32 @@ bool LogicalProcessor<Real>::visitInterval(const TracedRay& ray, double ta, doub
   return !hit.found();
 }
 
+template <class Real>
+void LogicalProcessor<Real>::newRayStamp() {
+  if (++rayStamp_ == 0) {  // stamps wrapped: forget every memo
+    std::fill(memoStamp_.begin(), memoStamp_.end(), 0u);
+    rayStamp_ = 1;
+  }
+}
+
+template <class Real>
+void LogicalProcessor<Real>::locateEntryCell(const TracedRay& ray, const EyeFrameRay& er, double t,
+                                             bool primary, int& column, int& row) const {
+  if (primary) {
+    cells_.locateSample(int(ray.sample % context_.view.samplesX()),
+                        int(ray.sample / context_.view.samplesX()), column, row);
+  } else {
+    cells_.locate(er, t, column, row);
+  }
+}
+
 // evaluate_ray of 3.5.2: follow the ray through this region's cells from where it entered; it ends here
 // (hit, light reached, or escaped) or leaves through a face towards the processor whose region it enters.
 template <class Real>
 void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
   const TracedRay& ray = m.ray;
   ++stats_.processed.of(ray.kind);
-  if (++rayStamp_ == 0) {  // stamps wrapped: forget every memo
-    std::fill(memoStamp_.begin(), memoStamp_.end(), 0u);
-    rayStamp_ = 1;
-  }
+  newRayStamp();
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
   if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmissionOrAheadT == 1 &&
       startsInLightSourceBox(er.o))
@@ -380,12 +396,7 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
       continue;
     }
     int column, row;
-    if (primary) {
-      cells_.locateSample(int(ray.sample % context_.view.samplesX()),
-                          int(ray.sample / context_.view.samplesX()), column, row);
-    } else {
-      cells_.locate(er, t, column, row);
-    }
+    locateEntryCell(ray, er, t, primary, column, row);
     RegionExit exit;
     const WalkResult result = cells_.walk(er, t, tEnd, column, row, visit, exit, stats_.processed.cellSteps);
     if (result == WalkResult::Exited)

@@ -131,6 +131,11 @@ class LogicalProcessor {
   bool primariesAllowed() const;
   bool shootIfAllowed(int primaries);
   void evaluate(const Message& message, bool primary);
+  // A stamp no memo holds yet: the objects this ray tests are tested once each (3.3).
+  void newRayStamp();
+  // The cell the ray's front part starts in: an eye ray's pixel, any other ray's point at t.
+  void locateEntryCell(const TracedRay& ray, const EyeFrameRay& er, double t, bool primary, int& column,
+                       int& row) const;
   void evaluateLocalRays();
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
   void shade(const TracedRay& ray, const core::Hit& hit, double transmission,

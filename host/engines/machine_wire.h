@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "core/precision.h"
+#include "host/engines/wire_codec.h"
 #include "host/machine/machine_engine.h"
 #include "host/machine/machine_report.h"
-#include "host/engines/wire_codec.h"
 #include "node/logical_processor.h"
 
 namespace raycube::host {

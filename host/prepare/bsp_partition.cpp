@@ -66,13 +66,45 @@ struct Splitter {
       leaves.push_back(r);
       return;
     }
-    // Cut across the longer side, unless the shorter one is the only one that can hold both halves.
+    const int axis = cutAxis(r, processors);
+    const std::pair<int, int> cut = bestCut(r, processors, pieces, axis);
+    const int best = cut.first, p1 = cut.second, p2 = processors - p1;
+    node::SampleRect first = r, second = r;
+    (axis == 0 ? first.x1 : first.y1) = best;
+    (axis == 0 ? second.x0 : second.y0) = best;
+    if (!spareCore) {
+      split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
+      split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
+      return;
+    }
+    // The first cut's two sides on two cores (every later cut stays on its side's core): each is cut exactly
+    // as it would be alone, and its leaves come before the second's, the same partition however many cores
+    // ran it. On one core alone, the other waited idle through this part of the preparation.
+    Splitter before{metric, {}, false}, beyond{metric, {}, false};
+    std::future<void> beforeDone = std::async(std::launch::async, [&] {
+      before.split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
+    });
+    beyond.split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
+    beforeDone.get();
+    for (const Splitter* side : {&before, &beyond})
+      leaves.insert(leaves.end(), side->leaves.begin(), side->leaves.end());
+  }
+
+  // Cut across the longer side, unless the shorter one is the only one that can hold both halves.
+  static int cutAxis(const node::SampleRect& r, int processors) {
     int axis = r.width() >= r.height() ? 0 : 1;
     auto fits = [&](int ax) {
       const int length = ax == 0 ? r.width() : r.height(), across = ax == 0 ? r.height() : r.width();
       return length >= 2 && (long long)length * across >= processors;
     };
     if (!fits(axis)) axis = 1 - axis;
+    return axis;
+  }
+
+  // Section 3.7.1: the line across `axis` that leaves both sides the same estimated load per processor, and
+  // how many processors the side before it takes.
+  std::pair<int, int> bestCut(const node::SampleRect& r, int processors,
+                              const std::vector<ScreenSegment>& pieces, int axis) const {
     const int lo = axis == 0 ? r.x0 : r.y0, hi = axis == 0 ? r.x1 : r.y1;
     const long long across = axis == 0 ? r.height() : r.width();
     int best = -1, p1 = 0;
@@ -115,26 +147,7 @@ struct Splitter {
     consider(range(std::max(lo + 1, coarse - step), std::min(hi, coarse + step + 1), 1));
     for (int k = lo + 1; best < 0 && k < hi; ++k) consider({k});  // feasible lines may all lie between
     if (best < 0) throw std::invalid_argument("BSP: an area is too small for its processors");
-    const int p2 = processors - p1;
-    node::SampleRect first = r, second = r;
-    (axis == 0 ? first.x1 : first.y1) = best;
-    (axis == 0 ? second.x0 : second.y0) = best;
-    if (!spareCore) {
-      split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
-      split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
-      return;
-    }
-    // The first cut's two sides on two cores (every later cut stays on its side's core): each is cut exactly
-    // as it would be alone, and its leaves come before the second's, the same partition however many cores
-    // ran it. On one core alone, the other waited idle through this part of the preparation.
-    Splitter before{metric, {}, false}, beyond{metric, {}, false};
-    std::future<void> beforeDone = std::async(std::launch::async, [&] {
-      before.split(first, p1, clipAll(pieces, first, Side{axis, double(best), false}));
-    });
-    beyond.split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
-    beforeDone.get();
-    for (const Splitter* side : {&before, &beyond})
-      leaves.insert(leaves.end(), side->leaves.begin(), side->leaves.end());
+    return {best, p1};
   }
 
   // One side of a cut: the line `at` across `axis`, the side beyond it or before it.

@@ -124,67 +124,104 @@ std::string machineTable(const MachineReport& report) {
   return text;
 }
 
+namespace {
+
+// A processor's face FIFOs (left, right, up, down): rays through them and how full they ran.
+nlohmann::json facesJson(const ProcessorReport& p) {
+  const node::NodeStats& n = p.node;
+  nlohmann::json faces = nlohmann::json::array();
+  for (int f = 0; f < node::kFaces; ++f) {
+    const queues::QueueStats& q = p.outgoing[f];
+    faces.push_back({{"sent", n.sent[f]},
+                     {"received", n.received[f]},
+                     {"fifoHighWater", q.highWater},
+                     {"fifoMeanOccupancy", q.meanOccupancy()},
+                     {"fifoRefusedPushes", q.refusedPushes}});
+  }
+  return faces;
+}
+
+nlohmann::json processorJson(const ProcessorReport& p) {
+  const node::NodeStats& n = p.node;
+  nlohmann::json rays, spawned, finished, messages;
+  for (int k = 0; k < core::kRayKinds; ++k) {
+    const char* name = core::rayKindName(core::RayKind(k));
+    rays[name] = n.processed.rays[k];
+    spawned[name] = n.spawned[k];
+    finished[name] = n.finished[k];
+    messages[name] = n.messagesByKind[k];
+  }
+  return {{"id", n.id},
+          {"pixels", n.area.count()},
+          {"area", {n.area.x0, n.area.y0, n.area.x1, n.area.y1}},
+          {"objects", n.objects},
+          {"rearObjects", n.rearObjects},
+          {"lightObjects", n.lightObjects},
+          {"extraLightObjects", n.extraLightObjects},
+          {"lightRaysTracedLocally", n.lightRaysTracedLocally},
+          {"cells", n.cells},
+          {"bvh", n.bvh},
+          {"heldObjects", n.heldObjects},
+          {"raysProcessed", rays},
+          {"raysSpawned", spawned},
+          {"raysFinished", finished},
+          {"messagesByKind", messages},
+          {"intersectionTests", n.processed.intersectionTests},
+          {"cellSteps", n.processed.cellSteps},
+          {"boxTests", n.processed.boxTests},
+          {"contributions", n.processed.contributions},
+          {"faces(left,right,up,down)", facesJson(p)},
+          {"forwarded", n.forwarded},
+          {"leftScene", n.leftScene},
+          {"refusedPushes", n.refusedPushes},
+          {"overflowHighWater", n.overflowHighWater},
+          {"locks", n.locks},
+          {"primariesHeld", n.primariesHeld},
+          {"idleSeconds", p.idleSeconds},
+          {"blockedSeconds", p.blockedSeconds},
+          {"tokenVisits", n.tokenVisits}};
+}
+
+nlohmann::json preprocessingJson(const MachineReport& report) {
+  return {{"sampling", report.preprocessing.sampling},
+          {"partitioning", report.preprocessing.partitioning},
+          {"pruning", report.preprocessing.pruning},
+          {"cells", report.preprocessing.cells},
+          {"mapping", report.preprocessing.mapping},
+          {"mappingDuringSynthesis", !report.hypercubeNode.empty() && !report.settings.emulate}};
+}
+
+nlohmann::json hypercubeJson(const MachineReport& report) {
+  return {{"mapped", !report.hypercubeNode.empty()}, {"dimension", report.hypercubeDimension},
+          {"nodeOfProcessor", report.hypercubeNode}, {"adjacencyEdges", report.adjacencyEdges},
+          {"dilationMean", report.dilationMean},     {"dilationMax", report.dilationMax}};
+}
+
+// --fifo-full lock: the cycle the run stopped on (null when it did not).
+nlohmann::json deadlockJson(const MachineReport& report) {
+  if (!report.deadlock) return nullptr;
+  nlohmann::json deadlock = {{"message", describe(*report.deadlock)}, {"cycle", nlohmann::json::array()}};
+  if (report.deadlock->simulatedSeconds >= 0) deadlock["simulatedSeconds"] = report.deadlock->simulatedSeconds;
+  if (report.deadlock->wallSeconds >= 0) deadlock["wallSeconds"] = report.deadlock->wallSeconds;
+  for (const LockedFifo& f : report.deadlock->cycle)
+    deadlock["cycle"].push_back({{"from", f.from}, {"to", f.to}, {"face", int(f.face)}, {"rays", f.rays}});
+  return deadlock;
+}
+
+// Figure 15: estimated against actual load per processor.
+nlohmann::json figure15Json(const LoadBalance& balance) {
+  return {{"estimatedOverMean", balance.estimated},     {"raysProcessedOverMean", balance.actualRays},
+          {"costOverMean", balance.actualCost},         {"actualInMetricOverMean", balance.actualInMetric},
+          {"pearsonEstimateVsActual", balance.pearson}, {"raysMaxOverMean", balance.raysMaxOverMean},
+          {"raysMinOverMean", balance.raysMinOverMean}, {"costMaxOverMean", balance.costMaxOverMean},
+          {"costMinOverMean", balance.costMinOverMean}};
+}
+
+}  // namespace
+
 nlohmann::json machineJson(const MachineReport& report) {
   nlohmann::json processors = nlohmann::json::array();
-  for (const ProcessorReport& p : report.processors) {
-    const node::NodeStats& n = p.node;
-    nlohmann::json rays, spawned, finished, messages;
-    for (int k = 0; k < core::kRayKinds; ++k) {
-      const char* name = core::rayKindName(core::RayKind(k));
-      rays[name] = n.processed.rays[k];
-      spawned[name] = n.spawned[k];
-      finished[name] = n.finished[k];
-      messages[name] = n.messagesByKind[k];
-    }
-    nlohmann::json faces = nlohmann::json::array();
-    for (int f = 0; f < node::kFaces; ++f) {
-      const queues::QueueStats& q = p.outgoing[f];
-      faces.push_back({{"sent", n.sent[f]},
-                       {"received", n.received[f]},
-                       {"fifoHighWater", q.highWater},
-                       {"fifoMeanOccupancy", q.meanOccupancy()},
-                       {"fifoRefusedPushes", q.refusedPushes}});
-    }
-    processors.push_back({{"id", n.id},
-                          {"pixels", n.area.count()},
-                          {"area", {n.area.x0, n.area.y0, n.area.x1, n.area.y1}},
-                          {"objects", n.objects},
-                          {"rearObjects", n.rearObjects},
-                          {"lightObjects", n.lightObjects},
-                          {"extraLightObjects", n.extraLightObjects},
-                          {"lightRaysTracedLocally", n.lightRaysTracedLocally},
-                          {"cells", n.cells},
-                          {"bvh", n.bvh},
-                          {"heldObjects", n.heldObjects},
-                          {"raysProcessed", rays},
-                          {"raysSpawned", spawned},
-                          {"raysFinished", finished},
-                          {"messagesByKind", messages},
-                          {"intersectionTests", n.processed.intersectionTests},
-                          {"cellSteps", n.processed.cellSteps},
-                          {"boxTests", n.processed.boxTests},
-                          {"contributions", n.processed.contributions},
-                          {"faces(left,right,up,down)", faces},
-                          {"forwarded", n.forwarded},
-                          {"leftScene", n.leftScene},
-                          {"refusedPushes", n.refusedPushes},
-                          {"overflowHighWater", n.overflowHighWater},
-                          {"locks", n.locks},
-                          {"primariesHeld", n.primariesHeld},
-                          {"idleSeconds", p.idleSeconds},
-                          {"blockedSeconds", p.blockedSeconds},
-                          {"tokenVisits", n.tokenVisits}});
-  }
-  const LoadBalance balance = loadBalanceOf(report);
-  nlohmann::json deadlock = nullptr;  // --fifo-full lock: the cycle the run stopped on
-  if (report.deadlock) {
-    deadlock = {{"message", describe(*report.deadlock)}, {"cycle", nlohmann::json::array()}};
-    if (report.deadlock->simulatedSeconds >= 0)
-      deadlock["simulatedSeconds"] = report.deadlock->simulatedSeconds;
-    if (report.deadlock->wallSeconds >= 0) deadlock["wallSeconds"] = report.deadlock->wallSeconds;
-    for (const LockedFifo& f : report.deadlock->cycle)
-      deadlock["cycle"].push_back({{"from", f.from}, {"to", f.to}, {"face", int(f.face)}, {"rays", f.rays}});
-  }
+  for (const ProcessorReport& p : report.processors) processors.push_back(processorJson(p));
   return {{"rows", report.settings.rows},
           {"balance", balanceName(report.settings.balance)},
           {"balanceAsked", balanceName(report.balanceAsked)},
@@ -192,34 +229,13 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"loadMetric", report.settings.loadMetric == LoadMetric::Cost ? "cost" : "rays"},
           {"subsampleWindow", report.settings.subsampleWindow},
           {"subsampledRays", report.subsampledRays},
-          {"preprocessingSeconds",
-           {{"sampling", report.preprocessing.sampling},
-            {"partitioning", report.preprocessing.partitioning},
-            {"pruning", report.preprocessing.pruning},
-            {"cells", report.preprocessing.cells},
-            {"mapping", report.preprocessing.mapping},
-            {"mappingDuringSynthesis", !report.hypercubeNode.empty() && !report.settings.emulate}}},
-          {"hypercube",
-           {{"mapped", !report.hypercubeNode.empty()},
-            {"dimension", report.hypercubeDimension},
-            {"nodeOfProcessor", report.hypercubeNode},
-            {"adjacencyEdges", report.adjacencyEdges},
-            {"dilationMean", report.dilationMean},
-            {"dilationMax", report.dilationMax}}},
-          {"figure15",
-           {{"estimatedOverMean", balance.estimated},
-            {"raysProcessedOverMean", balance.actualRays},
-            {"costOverMean", balance.actualCost},
-            {"actualInMetricOverMean", balance.actualInMetric},
-            {"pearsonEstimateVsActual", balance.pearson},
-            {"raysMaxOverMean", balance.raysMaxOverMean},
-            {"raysMinOverMean", balance.raysMinOverMean},
-            {"costMaxOverMean", balance.costMaxOverMean},
-            {"costMinOverMean", balance.costMinOverMean}}},
+          {"preprocessingSeconds", preprocessingJson(report)},
+          {"hypercube", hypercubeJson(report)},
+          {"figure15", figure15Json(loadBalanceOf(report))},
           {"columns", report.settings.columns},
           {"queueCapacity", fifoRaysFor(report.settings)},
           {"fifoFull", fifoFullFor(report.settings) == node::FifoFull::Lock ? "lock" : "overflow"},
-          {"deadlock", deadlock},
+          {"deadlock", deadlockJson(report)},
           {"cells", std::array{"auto", "paper", "bvh"}[std::size_t(report.settings.cells)]},
           {"cellLevel", report.settings.cellLevel},
           {"messageBytes", report.messageBytes},

@@ -374,14 +374,7 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
     if (hooks.check) hooks.check();
     // Processor 0 may announce between the line above and this one: the announcement still leaves below.
     if (terminated() && hooks.stopped()) break;
-    if (Clock::now() >= nextProgress) {
-      nextProgress = Clock::now() + kProgressPeriod;
-      if (std::vector<ProcessorProgress> now = hooks.progress(); !sameProgress(now, reported)) {
-        const char* bytes = reinterpret_cast<const char*>(now.data());
-        link_.post(0, Packet::Progress, std::vector<char>(bytes, bytes + now.size() * sizeof now[0]));
-        reported = std::move(now);
-      }
-    }
+    reportProgress(hooks, nextProgress, reported);
     if (worked) {
       idlePasses = 0;
       lastWork = Clock::now();
@@ -391,19 +384,37 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
       std::fprintf(stderr, "%s\n", describe().c_str());
       described = true;
     }
-    // Rays in flight either way: credits or rays will arrive soon, and nothing rings for them, so the task
-    // yields longer before it naps, and naps shorter.
-    const bool inFlight = raysInFlight();
-    const int yields = inFlight ? kYieldsInFlight : kYieldsIdle;
-    if (++idlePasses < yields) {
-      std::this_thread::yield();
-    } else {
-      taskBell_.sleepFor(std::min<std::chrono::microseconds>(
-          inFlight ? kShortestNap : kLongestNap, std::chrono::microseconds(10 << std::min(idlePasses - yields, 6))));
-    }
+    waitIdle(++idlePasses);
   }
   announceTermination();
   forwardContributions(true);
+}
+
+template <class Real>
+void MpiInterconnect<Real>::reportProgress(const ServeHooks& hooks, Clock::time_point& next,
+                                           std::vector<ProcessorProgress>& reported) {
+  if (Clock::now() < next) return;
+  next = Clock::now() + kProgressPeriod;
+  if (std::vector<ProcessorProgress> now = hooks.progress(); !sameProgress(now, reported)) {
+    const char* bytes = reinterpret_cast<const char*>(now.data());
+    link_.post(0, Packet::Progress, std::vector<char>(bytes, bytes + now.size() * sizeof now[0]));
+    reported = std::move(now);
+  }
+}
+
+template <class Real>
+void MpiInterconnect<Real>::waitIdle(int idlePasses) {
+  // Rays in flight either way: credits or rays will arrive soon, and nothing rings for them, so the task
+  // yields longer before it naps, and naps shorter.
+  const bool inFlight = raysInFlight();
+  const int yields = inFlight ? kYieldsInFlight : kYieldsIdle;
+  if (idlePasses < yields) {
+    std::this_thread::yield();
+  } else {
+    taskBell_.sleepFor(std::min<std::chrono::microseconds>(
+        inFlight ? kShortestNap : kLongestNap,
+        std::chrono::microseconds(10 << std::min(idlePasses - yields, 6))));
+  }
 }
 
 template <class Real>

@@ -8,6 +8,7 @@
 // the host (3.4) travel as packets too. One thread, the communication task (serve), calls MPI; the
 // processors' threads only touch lock-free queues and atomics, and sleep on their doorbells.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <functional>
 #include <map>
@@ -109,6 +110,11 @@ class MpiInterconnect {
   bool forwardContributions(bool flush);
   bool announceTermination();
   bool raysInFlight() const;
+  // The processors' progress to the host, at most every kProgressPeriod and only when it changed.
+  void reportProgress(const ServeHooks& hooks, std::chrono::steady_clock::time_point& next,
+                      std::vector<ProcessorProgress>& reported);
+  // After a pass with nothing to do: yield, then nap longer the more passes found nothing.
+  void waitIdle(int idlePasses);
 
   const node::RegionMap& regions_;
   MpiWiring wiring_;

@@ -49,28 +49,98 @@ void guarded(Failure& failure, int id, Body&& body) {
   }
 }
 
+// The transports this rank's processors talk through: its interconnect's endpoints, each behind a jitter
+// when the job asks for one (tests of the termination protocol).
 template <class Real>
-void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
-  const queues::MpiTraffic before = link.traffic();
-  queues::MpiInterconnect<Real> net(job.context.regions,
-                                    queues::MpiWiring{job.settings.rankOf, job.settings.queueCapacity,
-                                                      job.settings.rayBatch},
-                                    link);
-  const std::size_t local = job.setups.size();
+struct LocalTransports {
   std::vector<std::unique_ptr<queues::JitterTransport<Real>>> jitters;
   std::vector<node::BasicTransport<Real>*> transports;
   std::vector<int> ids;
   std::uint64_t objectsHeld = 0;
+};
+
+template <class Real>
+LocalTransports<Real> localTransports(const MachineJob& job, queues::MpiInterconnect<Real>& net) {
+  LocalTransports<Real> local;
   for (const node::NodeSetup& s : job.setups) {
-    ids.push_back(s.id);
-    objectsHeld += s.database->size();
-    transports.push_back(&net.endpoint(s.id));
+    local.ids.push_back(s.id);
+    local.objectsHeld += s.database->size();
+    local.transports.push_back(&net.endpoint(s.id));
     if (job.settings.jitterSeed > 0) {
-      jitters.push_back(std::make_unique<queues::JitterTransport<Real>>(
-          *transports.back(), job.settings.jitterSeed * 7919u + unsigned(s.id)));
-      transports.back() = jitters.back().get();
+      local.jitters.push_back(std::make_unique<queues::JitterTransport<Real>>(
+          *local.transports.back(), job.settings.jitterSeed * 7919u + unsigned(s.id)));
+      local.transports.back() = local.jitters.back().get();
     }
   }
+  return local;
+}
+
+// The communication task's view of the processors' threads: when they have stopped, their progress, the
+// host's start and quit, and their first failure.
+template <class Real>
+typename queues::MpiInterconnect<Real>::ServeHooks serveHooks(
+    const std::atomic<std::size_t>& running,
+    const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes, const std::vector<int>& ids,
+    std::latch& synthesis, const Failure& failure) {
+  typename queues::MpiInterconnect<Real>::ServeHooks hooks;
+  hooks.stopped = [&] { return running.load() == 0; };
+  hooks.progress = [&] {
+    std::vector<queues::ProcessorProgress> progress;
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+      if (nodes[k]) progress.push_back({std::uint32_t(ids[k]), nodes[k]->segmentsEvaluated()});
+    return progress;
+  };
+  hooks.other = [&](int from, Packet kind, std::span<const char>) {
+    if (from == 0 && kind == Packet::Start) return synthesis.count_down();
+    if (from == 0 && kind == Packet::Quit)
+      throw std::runtime_error("the host (rank 0) stopped during the render");
+  };
+  hooks.check = [&] {
+    if (failure.failed()) throw std::runtime_error(failure.cause());
+  };
+  return hooks;
+}
+
+// What the rank sends back: its processors' reports, and what it held and sent (the job and the results
+// messages counted in).
+template <class Real>
+RankResults rankResults(const queues::MpiInterconnect<Real>& net, const queues::MpiLink& link,
+                        const queues::MpiTraffic& before, std::uint64_t jobBytes,
+                        const LocalTransports<Real>& local,
+                        const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes,
+                        std::vector<ProcessorReport>& reports) {
+  RankResults results;
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    reports[k].node = nodes[k]->stats();
+    for (int f = 0; f < node::kFaces; ++f)
+      reports[k].outgoing[f] = net.outgoingStats(local.ids[k], node::Face(f));
+    results.processors.push_back(reports[k]);
+  }
+  const queues::MpiTraffic& after = link.traffic();
+  RankReport& r = results.rank;
+  r.rank = link.rank();
+  r.processors = int(nodes.size());
+  r.objects = local.objectsHeld;
+  r.jobBytes = jobBytes;
+  r.peakRssBytes = peakResidentBytes();
+  r.messagesSent = after.messagesSent - before.messagesSent + 1;  // with the results
+  r.bytesSent = after.bytesSent - before.bytesSent;
+  r.messagesReceived = after.messagesReceived - before.messagesReceived + 1;  // with the job
+  r.bytesReceived = after.bytesReceived - before.bytesReceived + jobBytes;
+  r.rayMessages = net.rayTraffic().rayMessages;
+  r.raysSent = net.rayTraffic().raysSent;
+  return results;
+}
+
+template <class Real>
+void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
+  const queues::MpiTraffic before = link.traffic();
+  queues::MpiInterconnect<Real> net(
+      job.context.regions,
+      queues::MpiWiring{job.settings.rankOf, job.settings.queueCapacity, job.settings.rayBatch}, link);
+  const std::size_t local = job.setups.size();
+  LocalTransports<Real> transports = localTransports(job, net);
+  const std::vector<int>& ids = transports.ids;
   std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> nodes(local);
   std::vector<ProcessorReport> reports(local);
   Failure failure;
@@ -83,7 +153,7 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
       const int id = ids[k];
       guarded(failure, id, [&] {
         nodes[k] = std::make_unique<node::LogicalProcessor<Real>>(job.context, std::move(job.setups[k]),
-                                                                   *transports[k]);
+                                                                  *transports.transports[k]);
       });
       subdivided.count_down();
       synthesis.wait();
@@ -94,48 +164,14 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
     subdivided.wait();
     if (failure.failed()) throw std::runtime_error(failure.cause());
     link.post(0, Packet::Ready, {});
-    typename queues::MpiInterconnect<Real>::ServeHooks hooks;
-    hooks.stopped = [&] { return running.load() == 0; };
-    hooks.progress = [&] {
-      std::vector<queues::ProcessorProgress> progress;
-      for (std::size_t k = 0; k < local; ++k)
-        if (nodes[k]) progress.push_back({std::uint32_t(ids[k]), nodes[k]->segmentsEvaluated()});
-      return progress;
-    };
-    hooks.other = [&](int from, Packet kind, std::span<const char>) {
-      if (from == 0 && kind == Packet::Start) return synthesis.count_down();
-      if (from == 0 && kind == Packet::Quit) throw std::runtime_error("the host (rank 0) stopped during the render");
-    };
-    hooks.check = [&] {
-      if (failure.failed()) throw std::runtime_error(failure.cause());
-    };
-    net.serve(hooks);
+    net.serve(serveHooks<Real>(running, nodes, ids, synthesis, failure));
   } catch (const std::exception& e) {
     link.abort(e.what());  // threads may be waiting for rays that will never come: end the job here
   }
   threads.joinAll();
 
-  RankResults results;
-  for (std::size_t k = 0; k < local; ++k) {
-    reports[k].node = nodes[k]->stats();
-    for (int f = 0; f < node::kFaces; ++f)
-      reports[k].outgoing[f] = net.outgoingStats(ids[k], node::Face(f));
-    results.processors.push_back(reports[k]);
-  }
-  const queues::MpiTraffic& after = link.traffic();
-  RankReport& r = results.rank;
-  r.rank = link.rank();
-  r.processors = int(local);
-  r.objects = objectsHeld;
-  r.jobBytes = jobBytes;
-  r.peakRssBytes = peakResidentBytes();
-  r.messagesSent = after.messagesSent - before.messagesSent + 1;  // with the results
-  r.bytesSent = after.bytesSent - before.bytesSent;
-  r.messagesReceived = after.messagesReceived - before.messagesReceived + 1;  // with the job
-  r.bytesReceived = after.bytesReceived - before.bytesReceived + jobBytes;
-  r.rayMessages = net.rayTraffic().rayMessages;
-  r.raysSent = net.rayTraffic().raysSent;
-  link.post(0, Packet::Results, encodeResults(results));
+  link.post(0, Packet::Results,
+            encodeResults(rankResults(net, link, before, jobBytes, transports, nodes, reports)));
   link.flushSends();
 }
 
