@@ -86,6 +86,7 @@ struct RenderCommand {
   std::string output;
   std::string statsPath;
   bool quiet = false;
+  bool strict = false;  // refuse a degenerate polygon or patch instead of skipping it
   std::string procs;  // empty: 4x4, or what fits a smaller image
   std::string overlayPath;
   std::string loadChartPath;
@@ -220,8 +221,13 @@ const CLI::Validator kSpdChoice(
     },
     "NAME[:SIZE]", "SPD_SCENE");
 
+// The one place warnings are printed: what reading a scene file found worth saying (core/README.md).
 core::Scene loadScene(const RenderCommand& cmd) {
-  if (!cmd.scenePath.empty()) return core::readNff(cmd.scenePath);
+  if (!cmd.scenePath.empty()) {
+    core::Scene scene = core::readNff(cmd.scenePath, core::NffOptions{.strict = cmd.strict});
+    for (const std::string& warning : scene.warnings) std::cerr << "warning: " << warning << '\n';
+    return scene;
+  }
   if (!cmd.spd.empty()) {
     const SpdChoice choice = parseSpdChoice(cmd.spd);
     return core::makeSpdScene(choice.name, choice.size);
@@ -540,6 +546,8 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render->add_option("--report", cmd.reportPath,
                      "Write a self-contained HTML run report (image, settings, summary, charts, table)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
+  render->add_flag("--strict", cmd.strict,
+                   "Refuse an NFF file with a degenerate polygon or patch instead of skipping it with a warning");
   render->get_option("--balls")->excludes("scene");
   render->get_option("--spd")->excludes("scene")->excludes("--balls");
 }
