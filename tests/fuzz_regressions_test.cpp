@@ -5,24 +5,28 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/nff_reader.h"
+#include "test_support.h"
 #include "tests/fuzz/differential_oracle.h"
 
 namespace {
 
-std::vector<std::filesystem::path> regressions() {
+using raycube::testing_support::slurp;
+
+// The regular files of a folder of the repository, sorted; with `extension`, only those that have it.
+std::vector<std::filesystem::path> filesIn(const char* folder, const char* extension = nullptr) {
   std::vector<std::filesystem::path> files;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "tests/fuzz/regressions"))
-    if (entry.is_regular_file()) files.push_back(entry.path());
+  for (const auto& entry : std::filesystem::directory_iterator(raycube::testing_support::sourcePath(folder)))
+    if (entry.is_regular_file() && (extension == nullptr || entry.path().extension() == extension))
+      files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
 }
+
+std::vector<std::filesystem::path> regressions() { return filesIn("tests/fuzz/regressions"); }
 
 // A file's stem as a test name: letters and digits only.
 std::string testNameOf(const ::testing::TestParamInfo<std::filesystem::path>& info) {
@@ -34,40 +38,24 @@ std::string testNameOf(const ::testing::TestParamInfo<std::filesystem::path>& in
 class FuzzRegression : public ::testing::TestWithParam<std::filesystem::path> {};
 
 TEST_P(FuzzRegression, PassesTheDifferentialOracle) {
-  std::ifstream in(GetParam(), std::ios::binary);
-  ASSERT_TRUE(in) << GetParam();
-  std::ostringstream text;
-  text << in.rdbuf();
-  EXPECT_EQ(raycube::fuzz::checkInput(text.str(), GetParam().filename().string()), "");
+  EXPECT_EQ(raycube::fuzz::checkInput(slurp(GetParam()), GetParam().filename().string()), "");
 }
 
-INSTANTIATE_TEST_SUITE_P(Corpus, FuzzRegression, ::testing::ValuesIn(regressions()),
-                         testNameOf);
+INSTANTIATE_TEST_SUITE_P(Corpus, FuzzRegression, ::testing::ValuesIn(regressions()), testNameOf);
 
 TEST(FuzzRegressionCorpus, IsNotEmpty) { EXPECT_GE(regressions().size(), 2u); }
 
 // NFF as people wrote it (tests/data/nff/: free layout, no lights, degenerate polygons skipped, VM_pRAY's
 // hints): read, not refused, and the same image in every mode and precision.
-std::vector<std::filesystem::path> nffInTheWild() {
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(RAYCUBE_SOURCE_DIR) / "tests/data/nff"))
-    if (entry.path().extension() == ".nff") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 class NffInTheWild : public ::testing::TestWithParam<std::filesystem::path> {};
 
 TEST_P(NffInTheWild, IsReadAndRendersTheSameInEveryModeAndPrecision) {
-  std::ifstream in(GetParam(), std::ios::binary);
-  ASSERT_TRUE(in) << GetParam();
-  std::ostringstream text;
-  text << in.rdbuf();
-  EXPECT_NO_THROW(raycube::core::parseNff(text.str(), GetParam().string()));
-  EXPECT_EQ(raycube::fuzz::checkInput(text.str(), GetParam().filename().string()), "");
+  const std::string text = slurp(GetParam());
+  ASSERT_FALSE(text.empty()) << GetParam();
+  EXPECT_NO_THROW(raycube::core::parseNff(text, GetParam().string()));
+  EXPECT_EQ(raycube::fuzz::checkInput(text, GetParam().filename().string()), "");
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, NffInTheWild, ::testing::ValuesIn(nffInTheWild()),
-                         testNameOf);
+INSTANTIATE_TEST_SUITE_P(Files, NffInTheWild, ::testing::ValuesIn(filesIn("tests/data/nff", ".nff")), testNameOf);
 
 }  // namespace
