@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -12,8 +13,11 @@
 #include <limits>
 #include <optional>
 #include <system_error>
+#include <utility>
 #include <vector>
 
+#include "core/box.h"
+#include "core/overloaded.h"
 #include "core/ray.h"
 
 namespace raycube::core {
@@ -24,6 +28,11 @@ namespace {
 // camera basis is numerically meaningless. SPD prints 6 significant digits; real geometry sits far above
 // (the teapot's thinnest patch corner has a sine of 0.09).
 constexpr double kMinSine = 1e-9;
+
+// VM_pRAY's "g" box is a hint printed with a few digits, like the rest of the file: an object that sticks
+// out of it by less than this fraction of the box's scale (its largest extent plus its largest coordinate)
+// is held. A box 6 digits can print is at most 5e-6 of that scale away from the one it was computed as.
+constexpr double kHintBoxSlackRelative = 1e-5;
 
 // Longest token echoed back in an error message; a mutated file may hold a megabyte on one line.
 constexpr std::size_t kMaxEchoedToken = 32;
@@ -66,142 +75,257 @@ const char* ordinal(std::size_t n) {
   return n < kNames.size() ? kNames[n] : "next";
 }
 
-// What a line of numbers holds, for messages: its description, or a polygon's vertex, described only if a
-// message needs it (formatted eagerly for each of sombrero 3's 97,000 vertices, it cost a fifth of the parse).
-struct Subject {
-  Subject(std::string_view description) : text(description) {}
-  Subject(const char* description) : text(description) {}
-  Subject(const std::string& description) : text(description) {}
-  static Subject vertexOf(std::size_t vertex, std::size_t vertices, std::string_view keyword, int keywordLine,
-                          std::string_view fields) {
-    Subject s(fields);
-    s.vertex = vertex;
-    s.vertices = vertices;
-    s.keyword = keyword;
-    s.keywordLine = keywordLine;
-    return s;
-  }
-  std::string str() const {
-    if (vertex == 0) return std::string(text);
-    return fmt::format("vertex {} of {} of the {} at line {} ({})", vertex, vertices, keyword, keywordLine, text);
-  }
-
-  std::string_view text;  // the description, or a vertex's fields ("x y z")
-  std::size_t vertex = 0;  // 1-based; 0: not a vertex
-  std::size_t vertices = 0;
-  std::string_view keyword;
-  int keywordLine = 0;
-};
-
+// A word of the text with its position; an empty text is the end of the file.
 struct Token {
   std::string_view text;
+  int line = 0;    // 1-based
   int column = 0;  // 1-based byte column
+  bool atEnd() const { return text.empty(); }
 };
 
-struct Line {
-  int number = 0;     // 1-based
-  int endColumn = 1;  // column just past the last character (before any comment)
-  std::vector<Token> tokens;
-};
+// A token as a message names what was found.
+std::string describe(const Token& token) {
+  return token.atEnd() ? std::string("end of file") : quoted(token.text);
+}
+
+// What was found where a number is missing, reported at `at` (just past the last number read): with its
+// line when that is another one.
+std::string describeFrom(const Token& token, const Token& at) {
+  if (token.atEnd() || token.line == at.line) return describe(token);
+  return fmt::format("{} at line {}", quoted(token.text), token.line);
+}
 
 bool isSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
+
+// The words that start an entity or a part of the "v" block (VM_pRAY's "number" and "g" included): where
+// one of these stands, an entity before it ran out of numbers.
+bool isKeyword(std::string_view text) {
+  static constexpr std::array<std::string_view, 16> kKeywords{
+      "v",  "b",    "l",  "f",     "c",      "s",          "p",      "pp",
+      "from", "at", "up", "angle", "hither", "resolution", "number", "g"};
+  return std::find(kKeywords.begin(), kKeywords.end(), text) != kKeywords.end();
+}
+
+// A word that was meant as a number, well formed or not ("0.5", "1.2.3", "-x", "nan").
+bool looksNumeric(std::string_view text) {
+  if (text.empty()) return false;
+  if (std::string_view("0123456789+-.").find(text[0]) != std::string_view::npos) return true;
+  const auto startsWith = [&](std::string_view prefix) {
+    return text.size() >= prefix.size() &&
+           std::equal(prefix.begin(), prefix.end(), text.begin(),
+                      [](char p, char t) { return p == std::tolower(static_cast<unsigned char>(t)); });
+  };
+  return startsWith("nan") || startsWith("inf");
+}
+
+// NFF text as a stream of words separated by any whitespace and line breaks, as NFF.TXT's general rule has
+// it ("the rest of the line and possibly other lines contain further information about the entity") and
+// the SPD's fscanf-based readers read it. '#' starts a comment that runs to the end of its line.
+class TokenStream {
+ public:
+  explicit TokenStream(std::string_view text) : text_(text) {
+    // A UTF-8 byte order mark, which some editors put before the first line of a saved file, is no word.
+    if (text_.starts_with("\xEF\xBB\xBF")) position_ = lineStart_ = 3;
+    advance();
+  }
+
+  const Token& peek() const { return next_; }
+  Token take() {
+    last_ = next_;
+    advance();
+    return last_;
+  }
+  // Just past the last word taken (line 1, column 1 before the first): where a missing number belongs.
+  Token pastLast() const {
+    return Token{{}, std::max(last_.line, 1), last_.column + static_cast<int>(last_.text.size())};
+  }
+  // Bytes from the next word on: a bound on the numbers the file can still hold (each takes a character and
+  // a separator), so that no count in the file reserves more memory than the file could fill.
+  std::size_t remainingBytes() const { return text_.size() - position_ + next_.text.size(); }
+
+ private:
+  void advance() {
+    while (position_ < text_.size()) {
+      const char c = text_[position_];
+      if (c == '\n') {
+        ++line_;
+        lineStart_ = ++position_;
+      } else if (isSpace(c)) {
+        ++position_;
+      } else if (c == '#') {
+        position_ = std::min(text_.find('\n', position_), text_.size());
+      } else {
+        break;
+      }
+    }
+    const std::size_t start = position_;
+    while (position_ < text_.size() && !isSpace(text_[position_]) && text_[position_] != '#') ++position_;
+    next_ = Token{text_.substr(start, position_ - start), line_, static_cast<int>(start - lineStart_) + 1};
+  }
+
+  std::string_view text_;
+  std::size_t position_ = 0;   // of the first byte not yet scanned
+  std::size_t lineStart_ = 0;  // of the current line's first byte
+  int line_ = 1;
+  Token next_;
+  Token last_{{}, 0, 1};
+};
+
+// What a run of numbers belongs to, for messages, formatted only if a message needs it (formatted eagerly
+// for each of sombrero 3's 97,000 vertices, it cost a fifth of the parse).
+struct Subject {
+  std::string_view keyword;  // "s", "from", ...
+  int line = 0;              // the keyword's
+  std::string_view fields;   // "center x y z radius"
+  std::size_t vertex = 0;    // 1-based; 0: not a vertex
+  std::size_t vertices = 0;
+
+  std::string str() const {
+    if (vertex == 0) return fmt::format("the '{}' at line {} ({})", keyword, line, fields);
+    return fmt::format("vertex {} of {} of the '{}' at line {} ({})", vertex, vertices, keyword, line, fields);
+  }
+};
+
+// N numbers read in a row, with where each stood.
+template <std::size_t N>
+struct Numbers {
+  std::array<double, N> values{};
+  std::array<Token, N> tokens{};
+  Vec3 vec(std::size_t first) const { return Vec3(values[first], values[first + 1], values[first + 2]); }
+};
+
+// A VM_pRAY hint, checked once the scene is read.
+struct CountHint {
+  int line = 0;
+  long long count = 0;
+};
+struct BoxHint {
+  int line = 0;
+  Box box;
+};
+
+// The object's exact bounding box: a cone's end discs by their true extent, not boundsOf's cubes (a box
+// hint that holds the discs exactly must not be reported as too small).
+Box tightBoundsOf(const Object& object) {
+  Box box;
+  std::visit(Overloaded{[&](const Sphere& s) {
+                          box.extend(s.center - Vec3(s.radius));
+                          box.extend(s.center + Vec3(s.radius));
+                        },
+                        [&](const Cone& c) {
+                          const Vec3 axis = glm::normalize(c.apex - c.base);
+                          const Vec3 across = glm::sqrt(glm::max(Vec3(0), Vec3(1) - axis * axis));
+                          for (const auto& [centre, radius] : {std::pair{c.base, c.baseRadius}, std::pair{c.apex, c.apexRadius}}) {
+                            box.extend(centre - radius * across);
+                            box.extend(centre + radius * across);
+                          }
+                        },
+                        [&](const Polygon& p) {
+                          for (const Vec3& v : p.vertices) box.extend(v);
+                        },
+                        [&](const Patch& p) {
+                          for (const Vec3& v : p.vertices) box.extend(v);
+                        }},
+             object.shape);
+  return box;
 }
 
 class NffParser {
  public:
-  NffParser(std::string_view text, std::string_view source) : source_(source) {
-    std::size_t start = 0;
-    while (true) {
-      const std::size_t end = text.find('\n', start);
-      lines_.push_back(
-          text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
-      if (end == std::string_view::npos) break;
-      start = end + 1;
-    }
-  }
+  NffParser(std::string_view text, std::string_view source, const NffOptions& options)
+      : tokens_(text), source_(source), options_(options) {}
 
   Scene parse() {
     Scene scene;
     scene.name = std::filesystem::path(std::string(source_)).stem().string();
     scene.source = std::string(source_);
-    while (std::optional<Line> line = nextLine()) {
-      const std::string_view keyword = line->tokens[0].text;
-      if (keyword == "v") {
-        readView(*line, scene);
-      } else if (keyword == "b") {
-        const auto rgb = numbers<3>(*line, 1, "'b' (background red green blue)");
-        scene.background = Color(rgb[0], rgb[1], rgb[2]);
-      } else if (keyword == "l") {
-        readLight(*line, scene);
-      } else if (keyword == "f") {
-        readMaterial(*line, scene);
-      } else if (keyword == "s" || keyword == "c" || keyword == "p" || keyword == "pp") {
-        requireObjectContext(*line, scene);
+    rejectWorldToolKit();
+    while (!tokens_.peek().atEnd()) {
+      const Token keyword = tokens_.take();
+      // The entity read before this one, for a number found where a keyword should stand.
+      const Token previous = std::exchange(entity_, keyword);
+      const std::size_t previousNumbers = std::exchange(numbersTaken_, 0);
+      const std::size_t previousVertices = std::exchange(vertexCount_, 0);
+      const std::string_view k = keyword.text;
+      if (k == "v") {
+        readView(keyword, scene);
+      } else if (k == "b") {
+        scene.background = numbers<3>({k, keyword.line, "background red green blue"}).vec(0);
+      } else if (k == "l") {
+        readLight(keyword, scene);
+      } else if (k == "f") {
+        readMaterial(keyword, scene);
+      } else if (k == "s" || k == "c" || k == "p" || k == "pp") {
+        requireObjectContext(keyword, scene);
         Object object;
         object.material = static_cast<std::uint32_t>(scene.materials.size() - 1);
-        object.line = line->number;
-        if (keyword == "s") {
-          readSphere(*line, object);
-        } else if (keyword == "c") {
-          readCone(*line, object);
-        } else if (keyword == "p") {
-          readPolygon(*line, object);
+        object.line = keyword.line;
+        bool kept = true;
+        if (k == "s") {
+          readSphere(keyword, object);
+        } else if (k == "c") {
+          readCone(keyword, object);
+        } else if (k == "p") {
+          kept = readPolygon(keyword, object);
         } else {
-          readPatch(*line, object);
+          kept = readPatch(keyword, object);
         }
-        scene.objects.push_back(std::move(object));
+        ++objectsInFile_;
+        if (kept) scene.objects.push_back(std::move(object));
+      } else if (k == "number") {
+        readCountHint(keyword);
+      } else if (k == "g") {
+        boxHints_.push_back({keyword.line, boxOf(numbers<6>({k, keyword.line, "scene box xmin xmax ymin ymax zmin zmax"}))});
       } else {
-        fail(
-            line->number, line->tokens[0].column,
-            fmt::format("expected one of the NFF keywords v, b, l, f, c, s, p, pp or a '#' comment, found {}",
-                        quoted(keyword)));
+        failUnexpected(keyword, previous, previousNumbers, previousVertices);
       }
     }
     if (viewLine_ == 0) {
-      failAtEnd("expected a 'v' block (from, at, up, angle, hither, resolution) before the first object");
+      fail(tokens_.peek(),
+           "expected a 'v' block (from, at, up, angle, hither, resolution) before the first object, found end "
+           "of file");
     }
+    addWarnings(scene);
     return scene;
   }
 
  private:
-  [[noreturn]] void fail(int line, int column, std::string_view message) const {
-    throw SceneError(source_, line, column, message);
+  [[noreturn]] void fail(const Token& where, std::string_view message) const {
+    throw SceneError(source_, where.line, where.column, message);
   }
 
-  [[noreturn]] void failAtEnd(std::string_view expected) const {
-    const int line = static_cast<int>(lines_.size());
-    const int column = static_cast<int>(lines_.back().size()) + 1;
-    fail(line, column, fmt::format("{}, found end of file", expected));
+  // Sense8 WorldToolKit wrote another format under the same name, whose first line is "nff" and second
+  // "version N": say so, rather than that "nff" is no NFF keyword.
+  void rejectWorldToolKit() {
+    const Token first = tokens_.peek();
+    std::string lower(first.text);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower != "nff") return;
+    tokens_.take();
+    const Token second = tokens_.peek();
+    fail(first, fmt::format("expected Eric Haines' NFF (the SPD's NFF.TXT), found Sense8 WorldToolKit's NFF, a "
+                            "different format under the same name (first line 'nff'{}); convert it to Haines' "
+                            "NFF first",
+                            second.text == "version" ? ", then 'version N'" : ""));
   }
 
-  // Lines not yet consumed, blank or not: an upper bound on the vertices a file can still hold.
-  std::size_t remainingLines() const { return lines_.size() - next_; }
-
-  // The next line with a token, comments removed; nullopt at end of file.
-  std::optional<Line> nextLine() {
-    while (next_ < lines_.size()) {
-      std::string_view text = lines_[next_];
-      Line line;
-      line.number = static_cast<int>(++next_);
-      if (const std::size_t hash = text.find('#'); hash != std::string_view::npos)
-        text = text.substr(0, hash);
-      std::size_t i = 0;
-      while (i < text.size()) {
-        if (isSpace(text[i])) {
-          ++i;
-          continue;
-        }
-        const std::size_t start = i;
-        while (i < text.size() && !isSpace(text[i])) ++i;
-        line.tokens.push_back({text.substr(start, i - start), static_cast<int>(start) + 1});
-      }
-      std::size_t end = text.size();
-      while (end > 0 && isSpace(text[end - 1])) --end;
-      line.endColumn = static_cast<int>(end) + 1;
-      if (!line.tokens.empty()) return line;
+  // A word where an entity should start: a number one too many for the entity before, or no keyword at all.
+  [[noreturn]] void failUnexpected(const Token& found, const Token& previous, std::size_t previousNumbers,
+                                   std::size_t previousVertices) const {
+    if (looksNumeric(found.text) && previous.line > 0) {
+      const std::string took =
+          previousVertices > 0
+              ? fmt::format("the {} vertices its count gives", previousVertices)
+              : fmt::format("its {} number{}", previousNumbers, previousNumbers == 1 ? "" : "s");
+      fail(found, fmt::format("expected a keyword after the '{}' at line {} took {}, found another number {}",
+                              previous.text, previous.line, took, quoted(found.text)));
     }
-    return std::nullopt;
+    fail(found,
+         fmt::format("expected one of the NFF keywords v, b, l, f, c, s, p, pp or a '#' comment, found {}",
+                     quoted(found.text)));
   }
 
   // A finite double; locale-independent. A leading '+' is tolerated (hand-written files use it).
@@ -222,310 +346,365 @@ class NffParser {
     return value;
   }
 
-  // Exactly N numbers in tokens [first, first + N) and nothing after them.
+  // The next word, which must be a number: the index-th (0-based) of the `count` numbers of `what`. A
+  // keyword or the end of the file there means the entity is short of numbers; anything else is a
+  // malformed number.
+  std::pair<double, Token> number(const Subject& what, std::size_t index, std::size_t count) {
+    const Token token = tokens_.peek();
+    if (const std::optional<double> value = parseDouble(token.text)) {
+      tokens_.take();
+      ++numbersTaken_;
+      return {*value, token};
+    }
+    if (token.atEnd() || isKeyword(token.text)) {
+      const Token at = tokens_.pastLast();
+      fail(at, fmt::format("expected {} numbers for {}, {}found {}{}", count, what.str(),
+                           index > 0 ? fmt::format("got {}, ", index) : "", describeFrom(token, at), hint_));
+    }
+    fail(token, fmt::format("expected a finite number as the {} value of {}, found {}{}", ordinal(index),
+                            what.str(), quoted(token.text), hint_));
+  }
+
   template <std::size_t N>
-  std::array<double, N> numbers(const Line& line, std::size_t first, const Subject& what) const {
-    const std::size_t got = line.tokens.size() - std::min(first, line.tokens.size());
-    if (got < N) {
-      fail(line.number, line.endColumn, fmt::format("expected {} numbers for {}, got {}", N, what.str(), got));
-    }
-    if (got > N) {
-      fail(line.number, line.tokens[first + N].column,
-           fmt::format("expected end of line after the {} numbers of {}, found {}", N, what.str(),
-                       quoted(line.tokens[first + N].text)));
-    }
-    std::array<double, N> values{};
-    for (std::size_t i = 0; i < N; ++i) values[i] = number(line, first + i, i, what);
-    return values;
+  Numbers<N> numbers(const Subject& what) {
+    Numbers<N> n;
+    for (std::size_t i = 0; i < N; ++i) std::tie(n.values[i], n.tokens[i]) = number(what, i, N);
+    return n;
   }
 
-  double number(const Line& line, std::size_t index, std::size_t position, const Subject& what) const {
-    const Token& token = line.tokens[index];
-    const std::optional<double> value = parseDouble(token.text);
-    if (!value) {
-      fail(line.number, token.column,
-           fmt::format("expected a finite number as the {} value of {}, found {}", ordinal(position), what.str(),
-                       quoted(token.text)));
+  // The next word, which must be a whole number (a count or a size): nullopt, with the word left
+  // unread, when it is not one.
+  std::optional<long long> integer() {
+    const std::optional<long long> value = parseInteger(tokens_.peek().text);
+    if (value) {
+      tokens_.take();
+      ++numbersTaken_;
     }
-    return *value;
+    return value;
   }
 
-  static Vec3 vec(const double* v) { return Vec3(v[0], v[1], v[2]); }
-
-  // The keyword line that must come next, e.g. "from" inside the "v" block.
-  Line expectKeywordLine(std::string_view keyword, std::string_view context) {
-    std::optional<Line> line = nextLine();
-    if (!line) failAtEnd(fmt::format("expected '{}' line of {}", keyword, context));
-    if (line->tokens[0].text != keyword) {
-      fail(line->number, line->tokens[0].column,
-           fmt::format("expected '{}' line of {}, found {}", keyword, context, quoted(line->tokens[0].text)));
+  // The next part of the "v" block, which NFF.TXT orders from, at, up, angle, hither, resolution.
+  Token viewPart(std::string_view name) {
+    const Token token = tokens_.peek();
+    if (token.text != name) {
+      fail(token, fmt::format("expected '{}' of the 'v' block started at line {} (from, at, up, angle, hither, "
+                              "resolution, in this order), found {}",
+                              name, viewLine_, describe(token)));
     }
-    return *std::move(line);
+    entity_ = tokens_.take();
+    numbersTaken_ = 0;
+    return token;
   }
 
-  // A line holding exactly N numbers, e.g. a polygon vertex.
-  template <std::size_t N>
-  std::pair<std::array<double, N>, Line> expectNumberLine(const Subject& what) {
-    std::optional<Line> line = nextLine();
-    if (!line) failAtEnd(fmt::format("expected {} numbers for {}", N, what.str()));
-    if (!parseDouble(line->tokens[0].text)) {
-      fail(line->number, line->tokens[0].column,
-           fmt::format("expected {} numbers for {}, found {}", N, what.str(), quoted(line->tokens[0].text)));
-    }
-    auto values = numbers<N>(*line, 0, what);
-    return {values, *std::move(line)};
-  }
-
-  void expectEndOfLine(const Line& line, std::size_t count, std::string_view what) const {
-    if (line.tokens.size() > count) {
-      fail(line.number, line.tokens[count].column,
-           fmt::format("expected end of line after {}, found {}", what, quoted(line.tokens[count].text)));
-    }
-  }
-
-  void readView(const Line& v, Scene& scene) {
+  void readView(const Token& v, Scene& scene) {
     if (viewLine_ != 0) {
-      fail(v.number, v.tokens[0].column,
-           fmt::format("expected a single 'v' block, found a second one (the first is at line {})",
-                       viewLine_));
+      fail(v, fmt::format("expected a single 'v' block, found a second one (the first is at line {})",
+                          viewLine_));
     }
-    expectEndOfLine(v, 1, "'v' (the view parameters go on the next six lines)");
-    viewLine_ = v.number;
-    scene.camera.line = v.number;
-    const std::string context = fmt::format("the 'v' block started at line {}", v.number);
+    viewLine_ = v.line;
     Camera& camera = scene.camera;
+    camera.line = v.line;
 
-    const Line fromLine = expectKeywordLine("from", context);
-    camera.from = vec(numbers<3>(fromLine, 1, "'from' (eye x y z)").data());
-    const Line atLine = expectKeywordLine("at", context);
-    camera.at = vec(numbers<3>(atLine, 1, "'at' (look-at x y z)").data());
-    if (camera.at == camera.from) {
-      fail(atLine.number, atLine.tokens[1].column,
-           "expected 'at' to differ from 'from', found the same point");
-    }
-    const Line upLine = expectKeywordLine("up", context);
-    camera.up = vec(numbers<3>(upLine, 1, "'up' (x y z)").data());
+    camera.from = numbers<3>({"from", viewPart("from").line, "eye x y z"}).vec(0);
+    const auto at = numbers<3>({"at", viewPart("at").line, "look-at x y z"});
+    camera.at = at.vec(0);
+    if (camera.at == camera.from) fail(at.tokens[0], "expected 'at' to differ from 'from', found the same point");
+    const auto up = numbers<3>({"up", viewPart("up").line, "x y z"});
+    camera.up = up.vec(0);
     if (!(sineBetween(camera.at - camera.from, camera.up) > kMinSine)) {
-      fail(upLine.number, upLine.tokens[1].column,
-           "expected an 'up' vector that is non-zero and not parallel to the view direction (at - from)");
+      fail(up.tokens[0], "expected an 'up' vector that is non-zero and not parallel to the view direction (at - from)");
     }
-    const Line angleLine = expectKeywordLine("angle", context);
-    camera.angleDegrees = numbers<1>(angleLine, 1, "'angle' (field of view in degrees)")[0];
+    const auto angle = numbers<1>({"angle", viewPart("angle").line, "field of view in degrees"});
+    camera.angleDegrees = angle.values[0];
     if (!(camera.angleDegrees > 0 && camera.angleDegrees < 180)) {
-      fail(angleLine.number, angleLine.tokens[1].column,
-           fmt::format("expected an 'angle' strictly between 0 and 180 degrees, found {}",
-                       camera.angleDegrees));
+      fail(angle.tokens[0], fmt::format("expected an 'angle' strictly between 0 and 180 degrees, found {}",
+                                        camera.angleDegrees));
     }
-    const Line hitherLine = expectKeywordLine("hither", context);
-    camera.hither = numbers<1>(hitherLine, 1, "'hither' (distance of the near plane)")[0];
-    if (camera.hither < 0) {
-      fail(hitherLine.number, hitherLine.tokens[1].column,
-           fmt::format("expected a 'hither' distance >= 0, found {}", camera.hither));
-    }
-    const Line resolution = expectKeywordLine("resolution", context);
+    const auto hither = numbers<1>({"hither", viewPart("hither").line, "distance of the near plane"});
+    camera.hither = hither.values[0];
+    if (camera.hither < 0)
+      fail(hither.tokens[0], fmt::format("expected a 'hither' distance >= 0, found {}", camera.hither));
+    viewPart("resolution");
     std::array<int, 2> size{};
     for (std::size_t i = 0; i < 2; ++i) {
-      if (resolution.tokens.size() <= i + 1) {
-        fail(resolution.number, resolution.endColumn,
-             fmt::format("expected 2 positive integers for 'resolution' (width height), got {}", i));
+      const Token token = tokens_.peek();
+      if (token.atEnd() || isKeyword(token.text)) {
+        const Token at = tokens_.pastLast();
+        fail(at, fmt::format("expected 2 positive integers for 'resolution' (width height), got {}, found {}", i,
+                             describeFrom(token, at)));
       }
-      const Token& token = resolution.tokens[i + 1];
-      const std::optional<long long> value = parseInteger(token.text);
+      const std::optional<long long> value = integer();
       if (!value || *value <= 0 || *value > kMaxNffResolution) {
-        fail(resolution.number, token.column,
-             fmt::format("expected a whole number of pixels from 1 to {} as the 'resolution' {}, found {}",
-                         kMaxNffResolution, i == 0 ? "width" : "height", quoted(token.text)));
+        fail(token, fmt::format("expected a whole number of pixels from 1 to {} as the 'resolution' {}, found {}",
+                                kMaxNffResolution, i == 0 ? "width" : "height", quoted(token.text)));
       }
       size[i] = static_cast<int>(*value);
     }
-    expectEndOfLine(resolution, 3, "'resolution' width height");
     camera.width = size[0];
     camera.height = size[1];
   }
 
-  void readLight(const Line& line, Scene& scene) {
+  void readLight(const Token& keyword, Scene& scene) {
     if (scene.lights.size() >= kMaxLights) {
-      fail(line.number, line.tokens[0].column,
-           fmt::format("expected at most {} lights (a ray names its light in 16 bits), found one more",
-                       kMaxLights));
+      fail(keyword, fmt::format("expected at most {} lights (a ray names its light in 16 bits), found one more",
+                                kMaxLights));
     }
+    const Subject what{"l", keyword.line, "light x y z, and r g b when coloured"};
     Light light;
-    light.line = line.number;
-    if (line.tokens.size() == 4) {
-      light.position = vec(numbers<3>(line, 1, "'l' (light x y z [r g b])").data());
-    } else if (line.tokens.size() == 7) {
-      const auto values = numbers<6>(line, 1, "'l' (light x y z r g b)");
-      light.position = vec(values.data());
-      light.color = vec(values.data() + 3);
+    light.line = keyword.line;
+    std::array<double, 6> values{};
+    for (std::size_t i = 0; i < 3; ++i) values[i] = number(what, i, 3).first;
+    light.position = Vec3(values[0], values[1], values[2]);
+    // Anything meant as a number after x y z is the colour; a keyword starts the next entity.
+    if (looksNumeric(tokens_.peek().text)) {
+      for (std::size_t i = 3; i < 6; ++i) values[i] = number(what, i, 6).first;
+      light.color = Color(values[3], values[4], values[5]);
       light.hasColor = true;
-    } else {
-      const std::size_t got = line.tokens.size() - 1;
-      fail(line.number, got < 3 ? line.endColumn : line.tokens[got < 6 ? 4 : 7].column,
-           fmt::format("expected 3 or 6 numbers after 'l' (x y z [r g b]), got {}", got));
     }
     scene.lights.push_back(light);
   }
 
-  void readMaterial(const Line& line, Scene& scene) {
-    const auto f = numbers<8>(line, 1, "'f' (red green blue Kd Ks Shine T index_of_refraction)");
+  void readMaterial(const Token& keyword, Scene& scene) {
+    const auto f = numbers<8>({"f", keyword.line, "red green blue Kd Ks Shine T index_of_refraction"});
     Material material;
-    material.color = Color(f[0], f[1], f[2]);
-    material.kd = f[3];
-    material.ks = f[4];
-    material.shine = f[5];
-    material.transmission = f[6];
-    material.ior = f[7];
+    material.color = f.vec(0);
+    material.kd = f.values[3];
+    material.ks = f.values[4];
+    material.shine = f.values[5];
+    material.transmission = f.values[6];
+    material.ior = f.values[7];
     // SPD writes an index of 0 for opaque materials; only light that is transmitted needs a real one.
     if (material.transmission > 0 && material.ior <= 0) {
-      fail(
-          line.number, line.tokens[8].column,
-          fmt::format("expected a positive index of refraction for a transmitting material (T > 0), found {}",
-                      material.ior));
+      fail(f.tokens[7],
+           fmt::format("expected a positive index of refraction for a transmitting material (T > 0), found {}",
+                       material.ior));
     }
-    if (scene.materials.size() >= std::numeric_limits<std::uint32_t>::max()) {
-      fail(line.number, line.tokens[0].column, "expected fewer than 2^32 materials");
-    }
+    if (scene.materials.size() >= std::numeric_limits<std::uint32_t>::max())
+      fail(keyword, "expected fewer than 2^32 materials");
     scene.materials.push_back(material);
   }
 
-  void requireObjectContext(const Line& line, const Scene& scene) const {
-    const Token& keyword = line.tokens[0];
+  void requireObjectContext(const Token& keyword, const Scene& scene) const {
     if (viewLine_ == 0) {
-      fail(line.number, keyword.column,
-           fmt::format("expected the 'v' block (viewpoint) before the first object, found {}",
-                       quoted(keyword.text)));
+      fail(keyword, fmt::format("expected the 'v' block (viewpoint) before the first object, found {}",
+                                quoted(keyword.text)));
     }
     if (scene.materials.empty()) {
-      fail(line.number, keyword.column,
-           fmt::format("expected an 'f' line (material) before the first object, found {}",
-                       quoted(keyword.text)));
+      fail(keyword, fmt::format("expected an 'f' line (material) before the first object, found {}",
+                                quoted(keyword.text)));
     }
   }
 
-  void readSphere(const Line& line, Object& object) {
-    const auto s = numbers<4>(line, 1, "'s' (center x y z radius)");
-    if (s[3] == 0) fail(line.number, line.tokens[4].column, "expected a non-zero sphere radius, found 0");
-    object.insideVisible = s[3] < 0;
-    object.shape = Sphere{vec(s.data()), std::abs(s[3])};
+  void readSphere(const Token& keyword, Object& object) {
+    const auto s = numbers<4>({"s", keyword.line, "center x y z radius"});
+    if (s.values[3] == 0) fail(s.tokens[3], "expected a non-zero sphere radius, found 0");
+    object.insideVisible = s.values[3] < 0;
+    object.shape = Sphere{s.vec(0), std::abs(s.values[3])};
   }
 
-  void readCone(const Line& line, Object& object) {
-    std::array<double, 8> c{};
-    int radiusLine = line.number;
-    int radiusColumn = line.tokens[0].column;
-    if (line.tokens.size() == 9) {
-      c = numbers<8>(line, 1, "'c' (base x y z radius apex x y z radius)");
-    } else if (line.tokens.size() == 1) {
-      const std::string context =
-          fmt::format("the cone base of the 'c' at line {} (x y z radius)", line.number);
-      const auto [base, baseLine] = expectNumberLine<4>(context);
-      const std::string apexContext =
-          fmt::format("the cone apex of the 'c' at line {} (x y z radius)", line.number);
-      const auto [apex, apexLine] = expectNumberLine<4>(apexContext);
-      std::copy(base.begin(), base.end(), c.begin());
-      std::copy(apex.begin(), apex.end(), c.begin() + 4);
-      radiusLine = baseLine.number;
-      radiusColumn = baseLine.tokens[3].column;
-    } else {
-      fail(
-          line.number, line.tokens[1].column,
-          fmt::format("expected 8 numbers after 'c', or none and base and apex on the next two lines, got {}",
-                      line.tokens.size() - 1));
-    }
-    Cone cone{vec(c.data()), c[3], vec(c.data() + 4), c[7]};
-    if (cone.base == cone.apex) {
-      fail(line.number, line.tokens[0].column, "expected distinct cone base and apex, found the same point");
-    }
+  // "c" with its 8 numbers; files lay them out on the "c" line or as base and apex on the next two.
+  void readCone(const Token& keyword, Object& object) {
+    const auto c = numbers<8>({"c", keyword.line, "base x y z radius, apex x y z radius"});
+    Cone cone{c.vec(0), c.values[3], c.vec(4), c.values[7]};
+    if (cone.base == cone.apex) fail(keyword, "expected distinct cone base and apex, found the same point");
     const bool negative = cone.baseRadius < 0 || cone.apexRadius < 0;
     const bool positive = cone.baseRadius > 0 || cone.apexRadius > 0;
     if (negative && positive) {
-      fail(
-          radiusLine, radiusColumn,
-          fmt::format("expected cone radii of one sign (both negative means inside visible), found {} and {}",
-                      cone.baseRadius, cone.apexRadius));
+      fail(c.tokens[3],
+           fmt::format("expected cone radii of one sign (both negative means inside visible), found {} and {}",
+                       cone.baseRadius, cone.apexRadius));
     }
-    if (!negative && !positive)
-      fail(radiusLine, radiusColumn, "expected a non-zero cone radius, found both 0");
+    if (!negative && !positive) fail(c.tokens[3], "expected a non-zero cone radius, found both 0");
     object.insideVisible = negative;
     cone.baseRadius = std::abs(cone.baseRadius);
     cone.apexRadius = std::abs(cone.apexRadius);
     object.shape = cone;
   }
 
-  // "p N" or "pp N": N >= 3, and no more than the file can still hold (guards memory on a corrupt count).
-  std::size_t vertexCount(const Line& line, std::string_view what) const {
-    if (line.tokens.size() < 2) {
-      fail(line.number, line.endColumn,
-           fmt::format("expected a vertex count after {}, found end of line", what));
+  // The count of "p N" or "pp N": a whole number, at least 3.
+  std::size_t vertexCount(const Token& keyword) {
+    const Token token = tokens_.peek();
+    if (token.atEnd() || isKeyword(token.text)) {
+      const Token at = tokens_.pastLast();
+      fail(at, fmt::format("expected a vertex count after '{}', found {}", keyword.text, describeFrom(token, at)));
     }
-    const Token& token = line.tokens[1];
-    const std::optional<long long> count = parseInteger(token.text);
+    const std::optional<long long> count = integer();
     if (!count) {
-      fail(line.number, token.column,
-           fmt::format("expected a whole vertex count after {}, found {}", what, quoted(token.text)));
+      fail(token, fmt::format("expected a whole vertex count after '{}', found {}", keyword.text,
+                              quoted(token.text)));
     }
-    if (*count < 3) {
-      fail(line.number, token.column,
-           fmt::format("expected at least 3 vertices for {}, found {}", what, *count));
-    }
-    if (static_cast<unsigned long long>(*count) > remainingLines()) {
-      fail(line.number, token.column,
-           fmt::format("expected {} vertex lines after {}, but the file has only {} lines left", *count, what,
-                       remainingLines()));
-    }
-    expectEndOfLine(line, 2, fmt::format("{} vertex count", what));
+    if (*count < 3) fail(token, fmt::format("expected at least 3 vertices for '{}', found {}", keyword.text, *count));
     return static_cast<std::size_t>(*count);
   }
 
-  void requirePlanarNormal(const Line& line, const std::vector<Vec3>& vertices, std::string_view what) const {
-    if (!(sineBetween(vertices[1] - vertices[0], vertices[2] - vertices[0]) > kMinSine)) {
-      fail(line.number, line.tokens[0].column,
-           fmt::format(
-               "expected {} whose first three vertices span a plane (they define its normal), found them "
-               "coincident or collinear",
-               what));
+  // The `count` vertices of a "p" or "pp", PerVertex numbers each, handed to vertex(numbers, index). Their
+  // layout is free, but a file that gives its first vertex a line of its own means one vertex a line: the
+  // first vertex that spans two lines then most likely lacks a number, which a later error names.
+  template <std::size_t PerVertex, class OnVertex>
+  void readVertices(const Token& keyword, std::size_t count, std::string_view fields, OnVertex&& vertex) {
+    vertexCount_ = count;
+    bool onePerLine = false;
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto n = numbers<PerVertex>({keyword.text, keyword.line, fields, i + 1, count});
+      const int first = n.tokens.front().line, last = n.tokens.back().line;
+      if (i == 0) {
+        onePerLine = first == last && first > keyword.line;
+      } else if (onePerLine && first != last && hint_.empty()) {
+        hint_ = fmt::format(" (vertex {} runs from line {} to line {}: a number missing on line {}?)", i + 1,
+                            first, last, first);
+      }
+      vertex(n, i);
     }
+    hint_.clear();
   }
 
-  void readPolygon(const Line& line, Object& object) {
-    const std::size_t count = vertexCount(line, "'p'");
+  // Memory for `count` vertices, or for as many as the rest of the file can hold: a corrupt count must not
+  // reserve gigabytes.
+  std::size_t plausibleVertices(std::size_t count, std::size_t perVertex) const {
+    return std::min(count, tokens_.remainingBytes() / (2 * perVertex) + 1);
+  }
+
+  // NFF.TXT: "the first two edges must form a non-zero convex angle", which gives the normal. A polygon or
+  // patch without one is skipped (false) and counted, unless the options are strict: real meshes carry them
+  // (a teapot's collinear patches at its poles, a zero-area triangle among a converted mesh's thousands).
+  bool spansPlane(const Token& keyword, const std::vector<Vec3>& vertices, std::string_view what) {
+    if (sineBetween(vertices[1] - vertices[0], vertices[2] - vertices[0]) > kMinSine) return true;
+    if (options_.strict) {
+      fail(keyword, fmt::format("expected {} whose first three vertices span a plane (they define its normal), "
+                                "found them coincident or collinear",
+                                what));
+    }
+    if (skipped_ == 0) firstSkippedLine_ = keyword.line;
+    ++skipped_;
+    return false;
+  }
+
+  bool readPolygon(const Token& keyword, Object& object) {
+    const std::size_t count = vertexCount(keyword);
     std::vector<Vec3> vertices;
-    vertices.reserve(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto [v, vertexLine] = expectNumberLine<3>(Subject::vertexOf(i + 1, count, "'p'", line.number, "x y z"));
-      vertices.push_back(vec(v.data()));
-    }
-    requirePlanarNormal(line, vertices, "a polygon");
+    vertices.reserve(plausibleVertices(count, 3));
+    readVertices<3>(keyword, count, "x y z", [&](const Numbers<3>& v, std::size_t) { vertices.push_back(v.vec(0)); });
+    ++polygonsInFile_;
+    if (!spansPlane(keyword, vertices, "a polygon")) return false;
     object.shape = Polygon(std::move(vertices));
+    return true;
   }
 
-  void readPatch(const Line& line, Object& object) {
-    const std::size_t count = vertexCount(line, "'pp'");
+  bool readPatch(const Token& keyword, Object& object) {
+    const std::size_t count = vertexCount(keyword);
     Patch patch;
-    patch.vertices.reserve(count);
-    patch.normals.reserve(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto [v, vertexLine] =
-          expectNumberLine<6>(Subject::vertexOf(i + 1, count, "'pp'", line.number, "x y z nx ny nz"));
-      Vec3 normal = vec(v.data() + 3);
+    patch.vertices.reserve(plausibleVertices(count, 6));
+    patch.normals.reserve(plausibleVertices(count, 6));
+    readVertices<6>(keyword, count, "x y z nx ny nz", [&](const Numbers<6>& v, std::size_t i) {
+      const Vec3 normal = v.vec(3);
       // Scale by the largest component first so tiny but valid normals do not underflow.
       const double largest = std::max({std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)});
       if (largest == 0) {
-        fail(vertexLine.number, vertexLine.tokens[3].column,
-             fmt::format("expected a non-zero normal for vertex {} of the 'pp' at line {}, found 0 0 0",
-                         i + 1, line.number));
+        fail(v.tokens[3], fmt::format("expected a non-zero normal for vertex {} of the 'pp' at line {}, found 0 0 0",
+                                      i + 1, keyword.line));
       }
-      patch.vertices.push_back(vec(v.data()));
+      patch.vertices.push_back(v.vec(0));
       patch.normals.push_back(glm::normalize(normal / largest));
-    }
-    requirePlanarNormal(line, patch.vertices, "a patch");
+    });
+    ++polygonsInFile_;
+    if (!spansPlane(keyword, patch.vertices, "a patch")) return false;
     object.shape = std::move(patch);
+    return true;
   }
 
+  // VM_pRAY's "number N": the count of objects it wrote, a hint.
+  void readCountHint(const Token& keyword) {
+    const Token token = tokens_.peek();
+    const std::optional<long long> count = integer();
+    if (!count || *count < 0) {
+      fail(token.atEnd() ? tokens_.pastLast() : token,
+           fmt::format("expected a whole number of objects after the 'number' at line {} (VM_pRAY's object "
+                       "count), found {}",
+                       keyword.line, describe(token)));
+    }
+    countHints_.push_back({keyword.line, *count});
+  }
+
+  // VM_pRAY's "g xmin xmax ymin ymax zmin zmax".
+  static Box boxOf(const Numbers<6>& g) {
+    return Box{Vec3(g.values[0], g.values[2], g.values[4]), Vec3(g.values[1], g.values[3], g.values[5])};
+  }
+
+  // Where the scene sticks out of a "g" box hint, or nullopt when the box holds it.
+  std::optional<std::string> outsideOf(const BoxHint& hint, const Scene& scene) const {
+    const Box& box = hint.box;
+    const Vec3 magnitude = glm::max(glm::abs(box.lo), glm::abs(box.hi));
+    const Vec3 extent = glm::abs(box.extent());
+    const double slack = kHintBoxSlackRelative * (std::max({extent.x, extent.y, extent.z}) +
+                                                  std::max({magnitude.x, magnitude.y, magnitude.z}));
+    std::size_t outside = 0;
+    int firstLine = 0;
+    std::string first;  // "to z = 1.2 beyond zmax = 1"
+    for (const Object& object : scene.objects) {
+      const Box bounds = tightBoundsOf(object);
+      std::string where;
+      for (int a = 0; a < 3 && where.empty(); ++a) {
+        const char axis = "xyz"[a];
+        if (bounds.lo[a] < box.lo[a] - slack) {
+          where = fmt::format("to {} = {:g} beyond {}min = {:g}", axis, bounds.lo[a], axis, box.lo[a]);
+        } else if (bounds.hi[a] > box.hi[a] + slack) {
+          where = fmt::format("to {} = {:g} beyond {}max = {:g}", axis, bounds.hi[a], axis, box.hi[a]);
+        }
+      }
+      if (where.empty()) continue;
+      if (outside++ > 0) continue;
+      firstLine = object.line;
+      first = std::move(where);
+    }
+    if (outside == 0) return std::nullopt;
+    if (outside == 1) return fmt::format("the object at line {} reaches out of it {}", firstLine, first);
+    return fmt::format("{} of the {} objects reach out of it, the first at line {} {}", outside,
+                       scene.objects.size(), firstLine, first);
+  }
+
+  void addWarnings(Scene& scene) const {
+    if (skipped_ > 0) {
+      scene.warnings.push_back(fmt::format(
+          "degenerate polygons: skipped {} of the {} polygons and patches, whose first three vertices are "
+          "coincident or collinear (no plane, so no normal), the first at {}:{}; --strict refuses the file instead",
+          skipped_, polygonsInFile_, source_, firstSkippedLine_));
+    }
+    for (const CountHint& hint : countHints_) {
+      if (hint.count != static_cast<long long>(objectsInFile_)) {
+        scene.warnings.push_back(fmt::format("VM_pRAY hint: {}:{}: 'number' gives {} objects, the file has {}",
+                                             source_, hint.line, hint.count, objectsInFile_));
+      }
+    }
+    for (const BoxHint& hint : boxHints_) {
+      if (const std::optional<std::string> outside = outsideOf(hint, scene)) {
+        scene.warnings.push_back(fmt::format("VM_pRAY hint: {}:{}: the 'g' box does not hold the scene: {}",
+                                             source_, hint.line, *outside));
+      }
+    }
+    if (scene.lights.empty()) {
+      scene.warnings.push_back(fmt::format(
+          "no lights: {} has no 'l' line, so surfaces show the ambient term alone, at {:g} (the SPD's "
+          "sqrt(L)/(2L) at L = 1), rather than black",
+          source_, spdIntensity(0)));
+    }
+  }
+
+  TokenStream tokens_;
   std::string_view source_;
-  std::vector<std::string_view> lines_;
-  std::size_t next_ = 0;  // index of the next unread line
-  int viewLine_ = 0;      // line of the "v" block, 0 before it
+  NffOptions options_;
+  int viewLine_ = 0;  // line of the "v" block, 0 before it
+  // The entity being read (a part of the "v" block counts as one), the numbers it took and, for a polygon
+  // or patch, its vertex count: what a message says when a number stands where the next keyword should.
+  Token entity_;
+  std::size_t numbersTaken_ = 0;
+  std::size_t vertexCount_ = 0;
+  std::string hint_;  // appended to a message about a missing number (readVertices)
+  std::size_t objectsInFile_ = 0;   // "s", "c", "p" and "pp", skipped ones included
+  std::size_t polygonsInFile_ = 0;  // "p" and "pp", skipped ones included
+  std::size_t skipped_ = 0;
+  int firstSkippedLine_ = 0;
+  std::vector<CountHint> countHints_;
+  std::vector<BoxHint> boxHints_;
 };
 
 const char* describe(std::filesystem::file_type type) {
@@ -554,11 +733,11 @@ SceneError::SceneError(std::string_view source, int line, int column, std::strin
 SceneError::SceneError(std::string_view source, std::string_view message)
     : SceneError(source, 0, 0, message) {}
 
-Scene parseNff(std::string_view text, std::string_view sourceName) {
-  return NffParser(text, sourceName).parse();
+Scene parseNff(std::string_view text, std::string_view sourceName, const NffOptions& options) {
+  return NffParser(text, sourceName, options).parse();
 }
 
-Scene readNff(const std::filesystem::path& path) {
+Scene readNff(const std::filesystem::path& path, const NffOptions& options) {
   const std::string source = path.string();
   // Only a regular file has an end: a device (/dev/zero) would be read until memory runs out, and opening
   // a FIFO with no writer blocks forever.
@@ -581,7 +760,7 @@ Scene readNff(const std::filesystem::path& path) {
   if (const auto size = std::filesystem::file_size(path, error); !error) text.reserve(size);
   while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) text.append(chunk.data(), std::size_t(in.gcount()));
   if (in.bad()) throw SceneError(source, "cannot read the scene file");
-  return parseNff(text, source);
+  return parseNff(text, source, options);
 }
 
 }  // namespace raycube::core

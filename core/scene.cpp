@@ -19,6 +19,12 @@ Polygon::Polygon(std::vector<Vec3> points)
   vertices = Corners(std::move(points));
 }
 
+double spdIntensity(std::size_t lights) {
+  if (lights == 0) return 0.5;
+  const double count = double(lights);
+  return std::sqrt(count) / (2 * count);
+}
+
 SceneFeatures Scene::features() const {
   SceneFeatures f;
   f.lightCount = lights.size();

@@ -134,6 +134,9 @@ struct SceneFeatures {
 struct Scene {
   std::string name;
   std::string source;  // the file it was read from, for messages; empty for scenes built in code
+  // What reading found worth telling the user without refusing the file, one line each, "what: details"
+  // ("no lights: ..."); core/README.md lists them. Nothing in core prints them: the command line does.
+  std::vector<std::string> warnings;
   Camera camera;
   Color background{0, 0, 0};
   std::vector<Light> lights;
@@ -144,6 +147,12 @@ struct Scene {
   // Largest magnitude of any coordinate or radius in the scene (camera, lights, objects).
   double largestCoordinate() const;
 };
+
+// The intensity of each uncoloured light and of the ambient term with `lights` lights: the SPD's
+// sqrt(L) / (2 L) (SPD-README). At L = 0 the formula has no value; the ambient is then 0.5, the formula's
+// value at L = 1 and its largest: a scene without lights looks like the same scene with one light that
+// reaches nothing, never black, and never brighter than a lit scene's ambient (core/README.md).
+double spdIntensity(std::size_t lights);
 
 // Every length of the scene times `factor`: camera position, target and hither, lights, and all geometry.
 // Directions (up, patch normals), angles, colours and materials are unit-free and stay.

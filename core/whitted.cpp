@@ -10,8 +10,7 @@ Whitted::Whitted(const Scene& scene, ShadingOptions options) : Whitted(scene, op
 
 Whitted::Whitted(const Scene& scene, ShadingOptions options, const SceneFeatures& features)
     : scene_(scene), options_(options) {
-  const double count = double(scene.lights.size());
-  ambient_ = count > 0 ? std::sqrt(count) / (2 * count) : 0.0;
+  ambient_ = spdIntensity(scene.lights.size());
   for (const Light& light : scene.lights)
     lightIntensity_.push_back(light.hasColor ? light.color : Color(ambient_));
   sceneTransmits_ = features.transmission;

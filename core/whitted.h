@@ -11,7 +11,7 @@
 //   refraction  a ray with coeff * T when T > 0 and depth < maxDepth (Snell); on total internal reflection
 //               no refraction ray, and the reflected ray carries coeff * (Ks + T) so no energy is lost
 // A ray that hits nothing contributes coeff * background. I = A = sqrt(L) / (2 L) for L lights, unless the
-// file gives the light a colour. N faces the incoming ray.
+// file gives the light a colour; A = 0.5 without lights (spdIntensity). N faces the incoming ray.
 #include <vector>
 
 #include "core/intersect.h"

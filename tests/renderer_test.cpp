@@ -137,11 +137,12 @@ TEST(RendererCounters, ReflectedRaysGrowWithDepth) {
   }
 }
 
-// Section 3.4's contribution form: with no lights (so no ambient either) and a black background, no
-// contribution can be anything but zero, and every pixel must be exactly black.
-TEST(ContributionForm, NoLightAndBlackBackgroundGiveABlackImage) {
+// Section 3.4's contribution form: with no lights, no diffuse term (so no ambient either) and a black
+// background, no contribution can be anything but zero, and every pixel must be exactly black.
+TEST(ContributionForm, NoLightNoDiffuseAndBlackBackgroundGiveABlackImage) {
   core::Scene scene = core::makeBalls(1);
   scene.lights.clear();
+  for (core::Material& material : scene.materials) material.kd = 0;
   scene.background = core::Color(0);
   for (core::Sampling sampling : {core::Sampling::Centers, core::Sampling::Corners}) {
     const RenderSettings settings = settingsFor(16, sampling);
@@ -150,6 +151,23 @@ TEST(ContributionForm, NoLightAndBlackBackgroundGiveABlackImage) {
       EXPECT_EQ(r.counters.of(core::RayKind::Light), 0u) << r.mode;
       EXPECT_GT(r.counters.of(core::RayKind::Reflected), 0u) << r.mode;  // the tree is still traced
     }
+  }
+}
+
+// Without lights the SPD's sqrt(L)/(2L) has no value; the ambient is its value at L = 1, so a white
+// diffuse sphere seen head-on shows 0.5 (issue 45's repro, black before), the same in every renderer and
+// precision.
+TEST(ContributionForm, NoLightsLeaveTheAmbientAtOneHalf) {
+  const core::Scene scene = core::readNff(testing_support::sourcePath("tests/data/nff/no_lights.nff"));
+  ASSERT_TRUE(scene.lights.empty());
+  RenderSettings settings = settingsFor(32, core::Sampling::Centers);
+  for (const core::Precision precision : {core::Precision::Double, core::Precision::Float}) {
+    settings.precision = precision;
+    const RenderResult reference = renderReference(scene, settings);
+    EXPECT_EQ(reference.image.at(16, 16), core::Color(0.5)) << core::nameOf(precision);
+    EXPECT_EQ(reference.image.at(0, 0), core::Color(0)) << "the background";
+    EXPECT_EQ(reference.counters.of(core::RayKind::Light), 0u);
+    EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, settings).image, reference.image));
   }
 }
 

@@ -152,8 +152,13 @@ const CLI::Validator kSpdChoice(
     },
     "NAME[:SIZE]", "SPD_SCENE");
 
+// The one place warnings are printed: what reading a scene file found worth saying (core/README.md).
 core::Scene loadScene(const RenderCommand& cmd) {
-  if (!cmd.scenePath.empty()) return core::readNff(cmd.scenePath);
+  if (!cmd.scenePath.empty()) {
+    core::Scene scene = core::readNff(cmd.scenePath, core::NffOptions{.strict = cmd.strict});
+    for (const std::string& warning : scene.warnings) std::cerr << "warning: " << warning << '\n';
+    return scene;
+  }
   if (!cmd.spd.empty()) {
     const SpdChoice choice = parseSpdChoice(cmd.spd);
     return core::makeSpdScene(choice.name, choice.size);
@@ -321,6 +326,8 @@ void addOutputOptions(CLI::App* render, RenderCommand& cmd) {
   render->add_option("--report", cmd.reportPath,
                      "Write a self-contained HTML run report (image, settings, summary, charts, table)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
+  render->add_flag("--strict", cmd.strict,
+                   "Refuse an NFF file with a degenerate polygon or patch instead of skipping it with a warning");
 }
 
 }  // namespace

@@ -42,7 +42,11 @@ nlohmann::json statsJson(const core::Scene& scene, const RenderResult& result) {
   nlohmann::json rays;
   for (int k = 0; k < core::kRayKinds; ++k) rays[core::rayKindName(core::RayKind(k))] = c.rays[k];
   return nlohmann::json{
-      {"scene", {{"name", scene.name}, {"objects", scene.objects.size()}, {"lights", scene.lights.size()}}},
+      {"scene",
+       {{"name", scene.name},
+        {"objects", scene.objects.size()},
+        {"lights", scene.lights.size()},
+        {"warnings", scene.warnings}}},
       {"image", {{"width", result.image.width}, {"height", result.image.height}}},
       {"mode", result.mode},
       {"workers", result.workers},

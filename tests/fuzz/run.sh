@@ -33,5 +33,5 @@ spdSeeds build/fuzz/spd-seeds build/fuzz/raycube
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 exec nice ./build/fuzz/fuzz_nff build/fuzz/corpus tests/fuzz/seeds build/fuzz/spd-seeds tests/fuzz/regressions \
-  -dict=tests/fuzz/nff.dict -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2048 -max_len=4096 \
+  tests/data/nff -dict=tests/fuzz/nff.dict -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2048 -max_len=4096 \
   -artifact_prefix=build/fuzz/artifacts/ -print_final_stats=1 "$@"
