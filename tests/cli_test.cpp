@@ -445,15 +445,18 @@ TEST_F(Cli, EnginesModuleIsLoadedOnlyWhenARunNeedsIt) {
   expectOneLineError("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2", {"RAYCUBE_ENGINES"}, missing);
 }
 
-// The built-in machines are the shipped files host/machine/platforms/<name>.xml and .costs: they give the
-// simulated runs the machines built in code gave (makespans and ray messages read from raycube at 5547b43,
-// which built them in code; the 3x3 grid relays messages between non-neighbours), to the last digit.
-TEST_F(Cli, ShippedPlatformsGiveTheSimulatedRunsOfTheMachinesOnceBuiltInCode) {
+// The built-in machines are the shipped files host/machine/platforms/<name>.xml and .costs, and a simulated
+// run is the same to the last digit on every run and computer: makespans and ray messages pinned (the 3x3
+// grid relays messages between non-neighbours). When the files replaced the machines built in code they gave
+// those machines' runs exactly (76.98374638788101, 35.71952954613807 and 0.0004257619000000003 s); the
+// values below are those of the message costs in seconds that followed (issue 40,
+// benchmarks/results/message_costs.md), the ray messages unchanged.
+TEST_F(Cli, ShippedPlatformsGiveTheSameSimulatedRunsToTheLastDigit) {
   for (const auto& [platform, procs, makespan, messages] :
        std::vector<std::tuple<std::string, std::string, double, int>>{
-           {"ipsc1", "2x2", 76.98374638788101, 753},
-           {"ipsc1", "3x3", 35.71952954613807, 1909},
-           {"cluster", "2x2", 0.0004257619000000003, 733}}) {
+           {"ipsc1", "2x2", 70.87961878053925, 753},
+           {"ipsc1", "3x3", 29.96025894601518, 1909},
+           {"cluster", "2x2", 0.0004266619000000003, 733}}) {
     SCOPED_TRACE(platform + " " + procs);
     const Outcome r =
         run("render --balls 1 --size 16x16 --light-rays messages -q -o x.png --stats s.json --procs " +
