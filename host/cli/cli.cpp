@@ -546,8 +546,9 @@ void addRenderOptions(CLI::App* render, RenderCommand& cmd, bool procsAsGrid) {
   render->add_option("--report", cmd.reportPath,
                      "Write a self-contained HTML run report (image, settings, summary, charts, table)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
-  render->add_flag("--strict", cmd.strict,
-                   "Refuse an NFF file with a degenerate polygon or patch instead of skipping it with a warning");
+  render->add_flag(
+      "--strict", cmd.strict,
+      "Refuse an NFF file with a degenerate polygon or patch instead of skipping it with a warning");
   render->get_option("--balls")->excludes("scene");
   render->get_option("--spd")->excludes("scene")->excludes("--balls");
 }
