@@ -304,6 +304,7 @@ class NffParser {
   // "version N": say so, rather than that "nff" is no NFF keyword.
   void rejectWorldToolKit() {
     const Token first = tokens_.peek();
+    if (first.text.size() != 3) return;
     std::string lower(first.text);
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
