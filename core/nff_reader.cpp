@@ -103,7 +103,7 @@ bool isSpace(char c) {
 // one of these stands, an entity before it ran out of numbers.
 bool isKeyword(std::string_view text) {
   static constexpr std::array<std::string_view, 16> kKeywords{
-      "v",  "b",    "l",  "f",     "c",      "s",          "p",      "pp",
+      "v",    "b",  "l",  "f",     "c",      "s",          "p",      "pp",
       "from", "at", "up", "angle", "hither", "resolution", "number", "g"};
   return std::find(kKeywords.begin(), kKeywords.end(), text) != kKeywords.end();
 }
@@ -184,7 +184,8 @@ struct Subject {
 
   std::string str() const {
     if (vertex == 0) return fmt::format("the '{}' at line {} ({})", keyword, line, fields);
-    return fmt::format("vertex {} of {} of the '{}' at line {} ({})", vertex, vertices, keyword, line, fields);
+    return fmt::format("vertex {} of {} of the '{}' at line {} ({})", vertex, vertices, keyword, line,
+                       fields);
   }
 };
 
@@ -217,7 +218,8 @@ Box tightBoundsOf(const Object& object) {
                         [&](const Cone& c) {
                           const Vec3 axis = glm::normalize(c.apex - c.base);
                           const Vec3 across = glm::sqrt(glm::max(Vec3(0), Vec3(1) - axis * axis));
-                          for (const auto& [centre, radius] : {std::pair{c.base, c.baseRadius}, std::pair{c.apex, c.apexRadius}}) {
+                          for (const auto& [centre, radius] :
+                               {std::pair{c.base, c.baseRadius}, std::pair{c.apex, c.apexRadius}}) {
                             box.extend(centre - radius * across);
                             box.extend(centre + radius * across);
                           }
@@ -277,15 +279,17 @@ class NffParser {
       } else if (k == "number") {
         readCountHint(keyword);
       } else if (k == "g") {
-        boxHints_.push_back({keyword.line, boxOf(numbers<6>({k, keyword.line, "scene box xmin xmax ymin ymax zmin zmax"}))});
+        boxHints_.push_back(
+            {keyword.line, boxOf(numbers<6>({k, keyword.line, "scene box xmin xmax ymin ymax zmin zmax"}))});
       } else {
         failUnexpected(keyword, previous, previousNumbers, previousVertices);
       }
     }
     if (viewLine_ == 0) {
-      fail(tokens_.peek(),
-           "expected a 'v' block (from, at, up, angle, hither, resolution) before the first object, found end "
-           "of file");
+      fail(
+          tokens_.peek(),
+          "expected a 'v' block (from, at, up, angle, hither, resolution) before the first object, found end "
+          "of file");
     }
     addWarnings(scene);
     return scene;
@@ -300,16 +304,18 @@ class NffParser {
   // "version N": say so, rather than that "nff" is no NFF keyword.
   void rejectWorldToolKit() {
     const Token first = tokens_.peek();
+    if (first.text.size() != 3) return;
     std::string lower(first.text);
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (lower != "nff") return;
     tokens_.take();
     const Token second = tokens_.peek();
-    fail(first, fmt::format("expected Eric Haines' NFF (the SPD's NFF.TXT), found Sense8 WorldToolKit's NFF, a "
-                            "different format under the same name (first line 'nff'{}); convert it to Haines' "
-                            "NFF first",
-                            second.text == "version" ? ", then 'version N'" : ""));
+    fail(first,
+         fmt::format("expected Eric Haines' NFF (the SPD's NFF.TXT), found Sense8 WorldToolKit's NFF, a "
+                     "different format under the same name (first line 'nff'{}); convert it to Haines' "
+                     "NFF first",
+                     second.text == "version" ? ", then 'version N'" : ""));
   }
 
   // A word where an entity should start: a number one too many for the entity before, or no keyword at all.
@@ -387,9 +393,10 @@ class NffParser {
   Token viewPart(std::string_view name) {
     const Token token = tokens_.peek();
     if (token.text != name) {
-      fail(token, fmt::format("expected '{}' of the 'v' block started at line {} (from, at, up, angle, hither, "
-                              "resolution, in this order), found {}",
-                              name, viewLine_, describe(token)));
+      fail(token,
+           fmt::format("expected '{}' of the 'v' block started at line {} (from, at, up, angle, hither, "
+                       "resolution, in this order), found {}",
+                       name, viewLine_, describe(token)));
     }
     entity_ = tokens_.take();
     numbersTaken_ = 0;
@@ -408,11 +415,13 @@ class NffParser {
     camera.from = numbers<3>({"from", viewPart("from").line, "eye x y z"}).vec(0);
     const auto at = numbers<3>({"at", viewPart("at").line, "look-at x y z"});
     camera.at = at.vec(0);
-    if (camera.at == camera.from) fail(at.tokens[0], "expected 'at' to differ from 'from', found the same point");
+    if (camera.at == camera.from)
+      fail(at.tokens[0], "expected 'at' to differ from 'from', found the same point");
     const auto up = numbers<3>({"up", viewPart("up").line, "x y z"});
     camera.up = up.vec(0);
     if (!(sineBetween(camera.at - camera.from, camera.up) > kMinSine)) {
-      fail(up.tokens[0], "expected an 'up' vector that is non-zero and not parallel to the view direction (at - from)");
+      fail(up.tokens[0],
+           "expected an 'up' vector that is non-zero and not parallel to the view direction (at - from)");
     }
     const auto angle = numbers<1>({"angle", viewPart("angle").line, "field of view in degrees"});
     camera.angleDegrees = angle.values[0];
@@ -430,13 +439,14 @@ class NffParser {
       const Token token = tokens_.peek();
       if (token.atEnd() || isKeyword(token.text)) {
         const Token at = tokens_.pastLast();
-        fail(at, fmt::format("expected 2 positive integers for 'resolution' (width height), got {}, found {}", i,
-                             describeFrom(token, at)));
+        fail(at, fmt::format("expected 2 positive integers for 'resolution' (width height), got {}, found {}",
+                             i, describeFrom(token, at)));
       }
       const std::optional<long long> value = integer();
       if (!value || *value <= 0 || *value > kMaxNffResolution) {
-        fail(token, fmt::format("expected a whole number of pixels from 1 to {} as the 'resolution' {}, found {}",
-                                kMaxNffResolution, i == 0 ? "width" : "height", quoted(token.text)));
+        fail(token,
+             fmt::format("expected a whole number of pixels from 1 to {} as the 'resolution' {}, found {}",
+                         kMaxNffResolution, i == 0 ? "width" : "height", quoted(token.text)));
       }
       size[i] = static_cast<int>(*value);
     }
@@ -446,8 +456,9 @@ class NffParser {
 
   void readLight(const Token& keyword, Scene& scene) {
     if (scene.lights.size() >= kMaxLights) {
-      fail(keyword, fmt::format("expected at most {} lights (a ray names its light in 16 bits), found one more",
-                                kMaxLights));
+      fail(keyword,
+           fmt::format("expected at most {} lights (a ray names its light in 16 bits), found one more",
+                       kMaxLights));
     }
     const Subject what{"l", keyword.line, "light x y z, and r g b when coloured"};
     Light light;
@@ -475,9 +486,10 @@ class NffParser {
     material.ior = f.values[7];
     // SPD writes an index of 0 for opaque materials; only light that is transmitted needs a real one.
     if (material.transmission > 0 && material.ior <= 0) {
-      fail(f.tokens[7],
-           fmt::format("expected a positive index of refraction for a transmitting material (T > 0), found {}",
-                       material.ior));
+      fail(
+          f.tokens[7],
+          fmt::format("expected a positive index of refraction for a transmitting material (T > 0), found {}",
+                      material.ior));
     }
     if (scene.materials.size() >= std::numeric_limits<std::uint32_t>::max())
       fail(keyword, "expected fewer than 2^32 materials");
@@ -510,9 +522,10 @@ class NffParser {
     const bool negative = cone.baseRadius < 0 || cone.apexRadius < 0;
     const bool positive = cone.baseRadius > 0 || cone.apexRadius > 0;
     if (negative && positive) {
-      fail(c.tokens[3],
-           fmt::format("expected cone radii of one sign (both negative means inside visible), found {} and {}",
-                       cone.baseRadius, cone.apexRadius));
+      fail(
+          c.tokens[3],
+          fmt::format("expected cone radii of one sign (both negative means inside visible), found {} and {}",
+                      cone.baseRadius, cone.apexRadius));
     }
     if (!negative && !positive) fail(c.tokens[3], "expected a non-zero cone radius, found both 0");
     object.insideVisible = negative;
@@ -526,14 +539,16 @@ class NffParser {
     const Token token = tokens_.peek();
     if (token.atEnd() || isKeyword(token.text)) {
       const Token at = tokens_.pastLast();
-      fail(at, fmt::format("expected a vertex count after '{}', found {}", keyword.text, describeFrom(token, at)));
+      fail(at, fmt::format("expected a vertex count after '{}', found {}", keyword.text,
+                           describeFrom(token, at)));
     }
     const std::optional<long long> count = integer();
     if (!count) {
       fail(token, fmt::format("expected a whole vertex count after '{}', found {}", keyword.text,
                               quoted(token.text)));
     }
-    if (*count < 3) fail(token, fmt::format("expected at least 3 vertices for '{}', found {}", keyword.text, *count));
+    if (*count < 3)
+      fail(token, fmt::format("expected at least 3 vertices for '{}', found {}", keyword.text, *count));
     return static_cast<std::size_t>(*count);
   }
 
@@ -570,9 +585,10 @@ class NffParser {
   bool spansPlane(const Token& keyword, const std::vector<Vec3>& vertices, std::string_view what) {
     if (sineBetween(vertices[1] - vertices[0], vertices[2] - vertices[0]) > kMinSine) return true;
     if (options_.strict) {
-      fail(keyword, fmt::format("expected {} whose first three vertices span a plane (they define its normal), "
-                                "found them coincident or collinear",
-                                what));
+      fail(keyword,
+           fmt::format("expected {} whose first three vertices span a plane (they define its normal), "
+                       "found them coincident or collinear",
+                       what));
     }
     if (skipped_ == 0) firstSkippedLine_ = keyword.line;
     ++skipped_;
@@ -583,7 +599,8 @@ class NffParser {
     const std::size_t count = vertexCount(keyword);
     std::vector<Vec3> vertices;
     vertices.reserve(plausibleVertices(count, 3));
-    readVertices<3>(keyword, count, "x y z", [&](const Numbers<3>& v, std::size_t) { vertices.push_back(v.vec(0)); });
+    readVertices<3>(keyword, count, "x y z",
+                    [&](const Numbers<3>& v, std::size_t) { vertices.push_back(v.vec(0)); });
     ++polygonsInFile_;
     if (!spansPlane(keyword, vertices, "a polygon")) return false;
     object.shape = Polygon(std::move(vertices));
@@ -600,8 +617,9 @@ class NffParser {
       // Scale by the largest component first so tiny but valid normals do not underflow.
       const double largest = std::max({std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)});
       if (largest == 0) {
-        fail(v.tokens[3], fmt::format("expected a non-zero normal for vertex {} of the 'pp' at line {}, found 0 0 0",
-                                      i + 1, keyword.line));
+        fail(v.tokens[3],
+             fmt::format("expected a non-zero normal for vertex {} of the 'pp' at line {}, found 0 0 0",
+                         i + 1, keyword.line));
       }
       patch.vertices.push_back(v.vec(0));
       patch.normals.push_back(glm::normalize(normal / largest));
@@ -666,13 +684,15 @@ class NffParser {
     if (skipped_ > 0) {
       scene.warnings.push_back(fmt::format(
           "degenerate polygons: skipped {} of the {} polygons and patches, whose first three vertices are "
-          "coincident or collinear (no plane, so no normal), the first at {}:{}; --strict refuses the file instead",
+          "coincident or collinear (no plane, so no normal), the first at {}:{}; --strict refuses the file "
+          "instead",
           skipped_, polygonsInFile_, source_, firstSkippedLine_));
     }
     for (const CountHint& hint : countHints_) {
       if (hint.count != static_cast<long long>(objectsInFile_)) {
-        scene.warnings.push_back(fmt::format("VM_pRAY hint: {}:{}: 'number' gives {} objects, the file has {}",
-                                             source_, hint.line, hint.count, objectsInFile_));
+        scene.warnings.push_back(
+            fmt::format("VM_pRAY hint: {}:{}: 'number' gives {} objects, the file has {}", source_, hint.line,
+                        hint.count, objectsInFile_));
       }
     }
     for (const BoxHint& hint : boxHints_) {
@@ -698,7 +718,7 @@ class NffParser {
   Token entity_;
   std::size_t numbersTaken_ = 0;
   std::size_t vertexCount_ = 0;
-  std::string hint_;  // appended to a message about a missing number (readVertices)
+  std::string hint_;                // appended to a message about a missing number (readVertices)
   std::size_t objectsInFile_ = 0;   // "s", "c", "p" and "pp", skipped ones included
   std::size_t polygonsInFile_ = 0;  // "p" and "pp", skipped ones included
   std::size_t skipped_ = 0;

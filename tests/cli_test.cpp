@@ -230,17 +230,20 @@ TEST_F(Cli, SceneWarningsGoToStderrAndTheStats) {
   const std::string noLights = testing_support::sourcePath("tests/data/nff/no_lights.nff").string();
   const Outcome r = run("render " + quoted(noLights) + " --mode reference -q -o x.exr --stats s.json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const std::string warning = "warning: no lights: " + noLights + " has no 'l' line, so surfaces show the ambient "
+  const std::string warning = "warning: no lights: " + noLights +
+                              " has no 'l' line, so surfaces show the ambient "
                               "term alone, at 0.5 (the SPD's sqrt(L)/(2L) at L = 1), rather than black\n";
   EXPECT_EQ(r.err, warning);
   EXPECT_EQ(core::readExr(dir_ / "x.exr").at(16, 16), core::Color(0.5)) << "black before issue 45";
   const nlohmann::json stats = nlohmann::json::parse(slurp(dir_ / "s.json"));
-  EXPECT_EQ(stats.at("scene").at("warnings"), nlohmann::json::array({warning.substr(9, warning.size() - 10)}));
+  EXPECT_EQ(stats.at("scene").at("warnings"),
+            nlohmann::json::array({warning.substr(9, warning.size() - 10)}));
 
   const Outcome quiet = run("render --balls 1 --size 8x8 -q -o y.png --stats t.json");
   ASSERT_EQ(quiet.exitCode, 0) << quiet.err;
   EXPECT_EQ(quiet.err, "");
-  EXPECT_EQ(nlohmann::json::parse(slurp(dir_ / "t.json")).at("scene").at("warnings"), nlohmann::json::array());
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir_ / "t.json")).at("scene").at("warnings"),
+            nlohmann::json::array());
 }
 
 // A degenerate polygon is skipped with one warning for the whole file; --strict refuses the file instead.
@@ -249,7 +252,8 @@ TEST_F(Cli, StrictRefusesWhatIsOtherwiseSkipped) {
   const Outcome r = run("render " + quoted(mesh) + " --size 16x16 --procs 2x2 -q -o skipped.png");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_EQ(r.err.rfind("warning: degenerate polygons: skipped 5 of the 10 polygons and patches", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.rfind("warning: degenerate polygons: skipped 5 of the 10 polygons and patches", 0), 0u)
+      << r.err;
   EXPECT_NE(r.err.find(mesh + ":38"), std::string::npos) << r.err;
   expectOneLineError("render " + quoted(mesh) + " --strict --size 16x16 -q -o x.png",
                      {mesh + ":38:1:", "first three vertices span a plane"});

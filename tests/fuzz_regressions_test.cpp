@@ -26,12 +26,15 @@ std::vector<std::filesystem::path> filesIn(const char* folder, const char* exten
   return files;
 }
 
-std::vector<std::filesystem::path> regressions() { return filesIn("tests/fuzz/regressions"); }
+std::vector<std::filesystem::path> regressions() {
+  return filesIn("tests/fuzz/regressions");
+}
 
 // A file's stem as a test name: letters and digits only.
 std::string testNameOf(const ::testing::TestParamInfo<std::filesystem::path>& info) {
   std::string name = info.param.stem().string();
-  std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum((unsigned char)c); }, '_');
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return !std::isalnum((unsigned char)c); }, '_');
   return name;
 }
 
@@ -56,6 +59,7 @@ TEST_P(NffInTheWild, IsReadAndRendersTheSameInEveryModeAndPrecision) {
   EXPECT_EQ(raycube::fuzz::checkInput(text, GetParam().filename().string()), "");
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, NffInTheWild, ::testing::ValuesIn(filesIn("tests/data/nff", ".nff")), testNameOf);
+INSTANTIATE_TEST_SUITE_P(Files, NffInTheWild, ::testing::ValuesIn(filesIn("tests/data/nff", ".nff")),
+                         testNameOf);
 
 }  // namespace

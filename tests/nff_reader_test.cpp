@@ -1,7 +1,4 @@
 #include "core/nff_reader.h"
-#include "core/nff_writer.h"
-#include "scene_equality.h"
-#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "core/nff_writer.h"
+#include "scene_equality.h"
+#include "test_support.h"
+
 namespace raycube::core {
 namespace {
 
@@ -20,7 +21,6 @@ using testing_support::slurp;
 
 const std::filesystem::path kScenes = testing_support::sourcePath("scenes");
 const std::filesystem::path kInTheWild = testing_support::sourcePath("tests/data/nff");
-
 
 // What the file holds, counted from its text alone (first word of each line), independent of the reader.
 std::map<std::string, int> keywordCounts(const std::string& text) {
@@ -200,7 +200,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "got 3, found 's' at line 10"},
         BadCase{"TooManyNumbers", kHeader + "s 0 0 1 1 7\n", "9:11",
                 "expected a keyword after the 's' at line 9 took its 4 numbers, found another number '7'"},
-        BadCase{"MaterialShort", kView + "f 1 1 1 1 0 0 0\n", "8:16", "expected 8 numbers for the 'f' at line 8"},
+        BadCase{"MaterialShort", kView + "f 1 1 1 1 0 0 0\n", "8:16",
+                "expected 8 numbers for the 'f' at line 8"},
         BadCase{"UnknownKeyword", kHeader + "sphere 0 0 0 1\n", "9:1", "found 'sphere'"},
         BadCase{"NaN", kHeader + "s 0 nan 0 1\n", "9:5", "expected a finite number"},
         BadCase{"Inf", kHeader + "s 0 0 0 inf\n", "9:9", "expected a finite number"},
@@ -210,9 +211,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"MixedConeRadii", kHeader + "c 0 0 0 1 0 0 1 -1\n", "9:9", "one sign"},
         BadCase{"ZeroConeRadii", kHeader + "c\n0 0 0 0\n0 0 1 0\n", "10:7", "non-zero cone radius"},
         BadCase{"CoincidentCone", kHeader + "c 0 0 0 1 0 0 0 0.5\n", "9:1", "distinct cone base and apex"},
-        BadCase{"ConeMissingApex", kHeader + "c\n0 0 0 1\n", "10:8",
-                "expected 8 numbers for the 'c' at line 9 (base x y z radius, apex x y z radius), got 4, found "
-                "end of file"},
+        BadCase{
+            "ConeMissingApex", kHeader + "c\n0 0 0 1\n", "10:8",
+            "expected 8 numbers for the 'c' at line 9 (base x y z radius, apex x y z radius), got 4, found "
+            "end of file"},
         BadCase{"ConeWrongCount", kHeader + "c 0 0 0 1\ns 0 0 0 1\n", "9:10", "got 4, found 's' at line 10"},
         BadCase{"PolygonTwoVertices", kHeader + "p 2\n0 0 0\n1 0 0\n", "9:3", "at least 3 vertices"},
         BadCase{"PolygonCollinear", kHeader + "p 3\n0 0 0\n1 0 0\n2 0 0\n", "9:1", "collinear", true},
@@ -220,8 +222,8 @@ INSTANTIATE_TEST_SUITE_P(
         // One vertex a line, one line short of a number: the error comes where the numbers run out, and
         // names the line that most likely lacks one.
         BadCase{"PolygonVertexShort", kHeader + "p 3\n0 0 0\n1 0\n0 1 0\n", "12:6",
-                "vertex 3 of 3 of the 'p' at line 9 (x y z), got 2, found end of file (vertex 2 runs from line 11 "
-                "to line 12: a number missing on line 11?)"},
+                "vertex 3 of 3 of the 'p' at line 9 (x y z), got 2, found end of file (vertex 2 runs from "
+                "line 11 to line 12: a number missing on line 11?)"},
         BadCase{"TruncatedPolygon", kHeader + "p 4\n0 0 0\n1 0 0\n", "11:6",
                 "expected 3 numbers for vertex 3 of 4 of the 'p' at line 9 (x y z), found end of file"},
         BadCase{"TruncatedInlinePolygon", kHeader + "p 3 0 0 0 1 0 0", "9:16",
@@ -230,13 +232,15 @@ INSTANTIATE_TEST_SUITE_P(
                 "vertex 3 of 4 of the 'p' at line 9 (x y z), found end of file"},
         BadCase{"PolygonRunsIntoNextEntity", kHeader + "p 4\n0 0 0\n1 0 0\ns 0 0 0 1\n", "11:6",
                 "vertex 3 of 4 of the 'p' at line 9 (x y z), found 's' at line 12"},
-        BadCase{"PolygonVertexCountTooSmall", kHeader + "p 3\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n", "13:1",
-                "expected a keyword after the 'p' at line 9 took the 3 vertices its count gives, found another "
-                "number '1'"},
+        BadCase{
+            "PolygonVertexCountTooSmall", kHeader + "p 3\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n", "13:1",
+            "expected a keyword after the 'p' at line 9 took the 3 vertices its count gives, found another "
+            "number '1'"},
         BadCase{"HugeVertexCount", kHeader + "p 999999999999\n0 0 0\n1 0 0\n0 1 0\n", "12:6",
                 "vertex 4 of 999999999999 of the 'p' at line 9 (x y z), found end of file"},
         BadCase{"VertexCountOverflow", kHeader + "p 99999999999999999999999\n", "9:3", "whole vertex count"},
-        BadCase{"VertexCountMissing", kHeader + "p\n", "9:2", "expected a vertex count after 'p', found end of file"},
+        BadCase{"VertexCountMissing", kHeader + "p\n", "9:2",
+                "expected a vertex count after 'p', found end of file"},
         BadCase{"PatchZeroNormal", kHeader + "pp 3\n0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n", "11:7",
                 "non-zero normal"},
         BadCase{"PatchCollinear", kHeader + "pp 3\n0 0 0 0 0 1\n1 1 1 0 0 1\n2 2 2 0 0 1\n", "9:1",
@@ -249,9 +253,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "before the first object"},
         BadCase{"ObjectBeforeMaterial", kView + "s 0 0 0 1\n", "8:1", "expected an 'f' line"},
         BadCase{"ViewMissingHither", "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 30\nresolution 4 4\n", "6:1",
-                "expected 'hither' of the 'v' block started at line 1 (from, at, up, angle, hither, resolution, in "
+                "expected 'hither' of the 'v' block started at line 1 (from, at, up, angle, hither, "
+                "resolution, in "
                 "this order), found 'resolution'"},
-        BadCase{"ViewTruncated", "v\nfrom 0 0 5\nat 0 0 0\n", "4:1", "expected 'up' of the 'v' block started at line 1"},
+        BadCase{"ViewTruncated", "v\nfrom 0 0 5\nat 0 0 0\n", "4:1",
+                "expected 'up' of the 'v' block started at line 1"},
         BadCase{"ViewTwice", kView + kView, "8:1", "second one"},
         BadCase{"ResolutionZero", "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 30\nhither 1\nresolution 0 4\n",
                 "7:12", "whole number of pixels"},
@@ -264,7 +270,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 30\nhither 1\nresolution 4 99999999\n", "7:14",
                 "whole number of pixels"},
         BadCase{"ResolutionMissing", "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 30\nhither 1\nresolution 4\n",
-                "7:13", "expected 2 positive integers for 'resolution' (width height), got 1, found end of file"},
+                "7:13",
+                "expected 2 positive integers for 'resolution' (width height), got 1, found end of file"},
         BadCase{"UpParallelToView", "v\nfrom 0 0 5\nat 0 0 0\nup 0 0 2\nangle 30\nhither 1\nresolution 4 4\n",
                 "4:4", "not parallel"},
         BadCase{"FromEqualsAt", "v\nfrom 1 2 3\nat 1 2 3\nup 0 1 0\nangle 30\nhither 1\nresolution 4 4\n",
@@ -280,12 +287,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "expected one of the NFF keywords v, b, l, f, c, s, p, pp or a '#' comment, found 'fp'"},
         BadCase{"PrivateAreaLight", kHeader + "la 0 0 5 1 0 0 0 1 0\n", "9:1", "found 'la'"},
         BadCase{"PrivateTexture", kHeader + "tx marble.tx\ns 0 0 0 1\n", "9:1", "found 'tx'"},
-        BadCase{"Sense8WorldToolKit", "nff\nversion 2.0\nmycube\n8\n", "1:1",
-                "found Sense8 WorldToolKit's NFF, a different format under the same name (first line 'nff', then "
-                "'version N')"},
+        BadCase{
+            "Sense8WorldToolKit", "nff\nversion 2.0\nmycube\n8\n", "1:1",
+            "found Sense8 WorldToolKit's NFF, a different format under the same name (first line 'nff', then "
+            "'version N')"},
         BadCase{"Sense8UpperCase", "NFF\nversion 1\n", "1:1", "Sense8 WorldToolKit"},
         BadCase{"VmprayCountNotANumber", kHeader + "number x\n", "9:8",
-                "expected a whole number of objects after the 'number' at line 9 (VM_pRAY's object count), found 'x'"},
+                "expected a whole number of objects after the 'number' at line 9 (VM_pRAY's object count), "
+                "found 'x'"},
         BadCase{"VmprayBoxShort", kHeader + "g 0 1 0 1 0\ns 0 0 0 1\n", "9:12",
                 "expected 6 numbers for the 'g' at line 9 (scene box xmin xmax ymin ymax zmin zmax), got 5"},
         BadCase{"BadIndexOfRefraction", kView + "f 1 1 1 1 0 0 0.5 0\n", "8:19", "index of refraction"}),
@@ -352,14 +361,16 @@ TEST(NffInTheWild, AnyLayoutOfTheNumbersReadsAsOneEntityALine) {
   EXPECT_TRUE(read.lights[1].hasColor);
   // The SPD readers' "up 0 1 0 angle 45 hither 0.01 resolution 512 512" on one line, and a file whose
   // every word stands on a line of its own.
-  const std::string oneLineView = "v\nfrom 2.1 1.3 1.7\nat 0 0 0\nup 0 0 1 angle 45 hither 0.01 resolution 32 32\n";
+  const std::string oneLineView =
+      "v\nfrom 2.1 1.3 1.7\nat 0 0 0\nup 0 0 1 angle 45 hither 0.01 resolution 32 32\n";
   std::string words;
   std::istringstream in(slurp(kInTheWild / "free_form_canonical.nff"));
   for (std::string word; in >> word;) words += word + "\n";
   EXPECT_TRUE(testing_support::sameScene(canonical, parseNff(words, "words.nff")));
   const std::string text = slurp(kInTheWild / "free_form_canonical.nff");
   const std::size_t viewEnd = text.find("l 4 3 2");
-  const Scene mixed = parseNff(text.substr(0, text.find("v\n")) + oneLineView + text.substr(viewEnd), "mixed.nff");
+  const Scene mixed =
+      parseNff(text.substr(0, text.find("v\n")) + oneLineView + text.substr(viewEnd), "mixed.nff");
   EXPECT_TRUE(testing_support::sameScene(canonical, mixed));
 }
 
@@ -367,10 +378,14 @@ TEST(NffInTheWild, AByteOrderMarkIsNoWord) {
   const Scene scene = parseNff("\xEF\xBB\xBF" + kHeader + "s 0 0 0 1\n", "bom.nff");
   EXPECT_EQ(scene.objects.size(), 1u);
   try {
-    parseNff("\xEF\xBB\xBF" "sphere\n", "bom.nff");
+    parseNff(
+        "\xEF\xBB\xBF"
+        "sphere\n",
+        "bom.nff");
     FAIL();
   } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("bom.nff:1:1: ", 0), 0u) << e.what();  // columns as an editor shows them
+    EXPECT_EQ(std::string(e.what()).rfind("bom.nff:1:1: ", 0), 0u)
+        << e.what();  // columns as an editor shows them
   }
 }
 
@@ -436,7 +451,7 @@ Scene randomScene(std::mt19937& random) {
 
 // The words of `text` (comments dropped), separated by random whitespace, line breaks and comments.
 std::string relaidOut(const std::string& text, std::mt19937& random) {
-  static const std::vector<std::string> kSeparators{" ",   "\t",   "\n",      "\r\n",           "  \t ",
+  static const std::vector<std::string> kSeparators{" ",    "\t",      "\n",    "\r\n",           "  \t ",
                                                     "\n\n", " \r\n\t", "\v\f ", " # a comment\n", "\n#\n\t"};
   std::string out = random() % 2 ? kSeparators[random() % kSeparators.size()] : "";
   std::istringstream lines(text);
@@ -452,7 +467,8 @@ std::string relaidOut(const std::string& text, std::mt19937& random) {
 TEST(NffInTheWild, WrittenScenesReadBackTheSameWhateverTheLayout) {
   std::mt19937 random(45u);
   std::vector<Scene> scenes{readNff(kScenes / "balls1.nff"), readNff(kScenes / "jacks1.nff"),
-                            readNff(kScenes / "teapot2.nff"), readNff(kInTheWild / "free_form_canonical.nff")};
+                            readNff(kScenes / "teapot2.nff"),
+                            readNff(kInTheWild / "free_form_canonical.nff")};
   for (int i = 0; i < 300; ++i) scenes.push_back(randomScene(random));
   int layouts = 0;
   for (const Scene& scene : scenes) {
@@ -489,12 +505,14 @@ TEST(NffInTheWild, DegeneratePolygonsAreSkippedWithOneWarning) {
     FAIL() << "a strict read accepted a degenerate patch";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()),
-              path.string() + ":38:1: expected a patch whose first three vertices span a plane (they define its "
-                              "normal), found them coincident or collinear");
+              path.string() +
+                  ":38:1: expected a patch whose first three vertices span a plane (they define its "
+                  "normal), found them coincident or collinear");
   }
   // A degenerate view stays an error, strict or not.
-  EXPECT_THROW(parseNff("v\nfrom 0 0 5\nat 0 0 5\nup 0 1 0\nangle 30\nhither 1\nresolution 4 4\n", "view.nff"),
-               SceneError);
+  EXPECT_THROW(
+      parseNff("v\nfrom 0 0 5\nat 0 0 5\nup 0 1 0\nangle 30\nhither 1\nresolution 4 4\n", "view.nff"),
+      SceneError);
 }
 
 TEST(NffInTheWild, NoLightsIsWarnedAbout) {
@@ -502,9 +520,10 @@ TEST(NffInTheWild, NoLightsIsWarnedAbout) {
   const Scene scene = readNff(path);
   EXPECT_TRUE(scene.lights.empty());
   ASSERT_EQ(scene.warnings.size(), 1u);
-  EXPECT_EQ(scene.warnings[0], "no lights: " + path.string() +
-                                   " has no 'l' line, so surfaces show the ambient term alone, at 0.5 (the SPD's "
-                                   "sqrt(L)/(2L) at L = 1), rather than black");
+  EXPECT_EQ(scene.warnings[0],
+            "no lights: " + path.string() +
+                " has no 'l' line, so surfaces show the ambient term alone, at 0.5 (the SPD's "
+                "sqrt(L)/(2L) at L = 1), rather than black");
   EXPECT_EQ(spdIntensity(0), 0.5);
   EXPECT_EQ(spdIntensity(1), 0.5);
   EXPECT_EQ(spdIntensity(4), 0.25);
@@ -531,17 +550,20 @@ TEST(NffInTheWild, VmprayHintsAreCheckedNeverRefused) {
   const Scene small = parseNff(replaced("g -2 2 -2 2 -0.5 1.5", "g -2 2 -2 2 -0.5 1"), "vmpray.nff");
   ASSERT_EQ(small.warnings.size(), 1u);
   EXPECT_EQ(small.warnings[0],
-            "VM_pRAY hint: vmpray.nff:11: the 'g' box does not hold the scene: the object at line 18 reaches out of it "
+            "VM_pRAY hint: vmpray.nff:11: the 'g' box does not hold the scene: the object at line 18 reaches "
+            "out of it "
             "to z = 1.2 beyond zmax = 1");
   // A box printed with a few digits holds what it was computed for; a cone is held by its discs' true extent.
-  EXPECT_TRUE(parseNff(replaced("g -2 2 -2 2 -0.5 1.5", "g -2 2 -2 2 -0.499999 1.2"), "v.nff").warnings.empty());
+  EXPECT_TRUE(
+      parseNff(replaced("g -2 2 -2 2 -0.5 1.5", "g -2 2 -2 2 -0.499999 1.2"), "v.nff").warnings.empty());
   // Anywhere in the file, more than once, in any layout.
   const Scene moved = parseNff(replaced("number 4\n", "") + "number\n5 g -1 1 -1 1 -1 1\n", "vmpray.nff");
   ASSERT_EQ(moved.warnings.size(), 2u);
   EXPECT_NE(moved.warnings[0].find("'number' gives 5 objects, the file has 4"), std::string::npos);
-  EXPECT_NE(moved.warnings[1].find("4 of the 4 objects reach out of it, the first at line 15 to x = -1.3 beyond "
-                                   "xmin = -1"),
-            std::string::npos)
+  EXPECT_NE(
+      moved.warnings[1].find("4 of the 4 objects reach out of it, the first at line 15 to x = -1.3 beyond "
+                             "xmin = -1"),
+      std::string::npos)
       << moved.warnings[1];
   EXPECT_EQ(moved.objects.size(), 4u);
 }
@@ -567,7 +589,8 @@ TEST(NffReader, ErrorsInAFileNameTheFile) {
     readNff(path);
     FAIL() << "accepted a sphere with 3 numbers";
   } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(path.string() + ":9:8: expected 4 numbers for the 's' at line 9", 0), 0u)
+    EXPECT_EQ(
+        std::string(e.what()).rfind(path.string() + ":9:8: expected 4 numbers for the 's' at line 9", 0), 0u)
         << e.what();
   }
   std::filesystem::remove(path);

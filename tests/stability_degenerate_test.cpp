@@ -126,7 +126,9 @@ TEST_P(StabilityDegenerate, LightInsideAnOpaqueSphereLightsNothingOutside) {
   expectMachineMatchesInEveryLightMode(lit, settings, 2, 2, enclosed, "lamp enclosed");
 }
 
-TEST_P(StabilityDegenerate, ZeroRadiusAndZeroAreaAreRejected) {
+// A zero radius is an error; a polygon of zero area is skipped with a warning before any renderer sees it
+// (real meshes carry them), and refused when read strictly.
+TEST_P(StabilityDegenerate, ZeroRadiusIsRejectedAndZeroAreaNeverRendered) {
   const std::string header =
       "v\nfrom 0 -5 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0.01\nresolution 16 16\n"
       "l 1 -3 4\nf 1 0.5 0.5 0.8 0 0 0 0\n";  // 9 lines
@@ -139,9 +141,14 @@ TEST_P(StabilityDegenerate, ZeroRadiusAndZeroAreaAreRejected) {
   } catch (const core::SceneError& e) {
     EXPECT_EQ(e.line(), 10) << e.what();
   }
+  const std::string zeroArea = header + "p 3\n1 1 1\n1 1 1\n1 1 1\n";
+  const core::Scene skipped = core::parseNff(zeroArea, "zero_area.nff");
+  EXPECT_TRUE(skipped.objects.empty());
+  ASSERT_EQ(skipped.warnings.size(), 1u);
+  EXPECT_NE(skipped.warnings[0].find("zero_area.nff:10"), std::string::npos) << skipped.warnings[0];
   try {
-    core::parseNff(header + "p 3\n1 1 1\n1 1 1\n1 1 1\n", "zero_area.nff");
-    ADD_FAILURE() << "a polygon of area 0 was accepted";
+    core::parseNff(zeroArea, "zero_area.nff", core::NffOptions{.strict = true});
+    ADD_FAILURE() << "a polygon of area 0 was accepted by a strict read";
   } catch (const core::SceneError& e) {
     EXPECT_EQ(e.line(), 10) << e.what();
   }

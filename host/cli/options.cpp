@@ -326,8 +326,9 @@ void addOutputOptions(CLI::App* render, RenderCommand& cmd) {
   render->add_option("--report", cmd.reportPath,
                      "Write a self-contained HTML run report (image, settings, summary, charts, table)");
   render->add_flag("-q,--quiet", cmd.quiet, "No progress indication");
-  render->add_flag("--strict", cmd.strict,
-                   "Refuse an NFF file with a degenerate polygon or patch instead of skipping it with a warning");
+  render->add_flag(
+      "--strict", cmd.strict,
+      "Refuse an NFF file with a degenerate polygon or patch instead of skipping it with a warning");
 }
 
 }  // namespace
