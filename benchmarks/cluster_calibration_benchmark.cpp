@@ -37,7 +37,8 @@ RenderSettings oneThread() {
 
 void report(benchmark::State& state, double flops, double traceSeconds) {
   state.counters["node_speed"] = traceSeconds > 0 ? flops / traceSeconds : 0.0;
-  state.counters["flop_eq_per_render"] = flops / double(std::max<benchmark::IterationCount>(1, state.iterations()));
+  state.counters["flop_eq_per_render"] =
+      flops / double(std::max<benchmark::IterationCount>(1, state.iterations()));
 }
 
 void BM_Machine1x1(benchmark::State& state) {

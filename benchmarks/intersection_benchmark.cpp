@@ -12,11 +12,11 @@
 #include <random>
 #include <vector>
 
-#include "core/spd/balls.h"
 #include "core/bvh.h"
 #include "core/intersect.h"
 #include "core/nff_reader.h"
 #include "core/polygon_outline.h"
+#include "core/spd/balls.h"
 #include "core/spd/generators.h"
 #include "core/whitted.h"
 #include "host/prepare/box_tree.h"
@@ -162,7 +162,8 @@ void BM_NearestHit_ConvexPolygon_Outline(benchmark::State& state) {
 
 // As a scene holds it: the fan up to kMostFanVertices corners, the outline beyond.
 void BM_NearestHit_ConvexPolygon(benchmark::State& state) {
-  runNearestHit(state, Object{Polygon(regularPolygon(int(state.range(0)))), 0, false}, raysTowardsOrigin(1.0, 11));
+  runNearestHit(state, Object{Polygon(regularPolygon(int(state.range(0)))), 0, false},
+                raysTowardsOrigin(1.0, 11));
 }
 
 BENCHMARK(BM_NearestHit_SphereHit);

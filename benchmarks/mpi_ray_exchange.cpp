@@ -38,7 +38,8 @@ void barrier(queues::MpiLink& link) {
     const std::size_t n = link.rank() == 0 ? link.poll([](int, queues::Packet, std::span<const char>) {}) : 0;
     link.progressSends();
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-    if (n == 0 && !done) std::this_thread::sleep_for(std::chrono::microseconds(200));  // leave the cores to the exchange
+    if (n == 0 && !done)
+      std::this_thread::sleep_for(std::chrono::microseconds(200));  // leave the cores to the exchange
   }
 }
 
@@ -56,8 +57,8 @@ double exchange(queues::MpiLink& link, const node::RegionMap& regions, const Con
       std::vector<Message> burst(64);
       for (Message& m : burst) m.destination = 1;
       for (long sent = 0; sent < rays;) {
-        const std::size_t n = net.endpoint(0).trySend(1, std::span<const Message>(burst).first(
-                                                             std::size_t(std::min<long>(64, rays - sent))));
+        const std::size_t n = net.endpoint(0).trySend(
+            1, std::span<const Message>(burst).first(std::size_t(std::min<long>(64, rays - sent))));
         sent += long(n);
         if (n == 0) net.waitFor(0, [&] { return net.endpoint(0).canSend(1); });
       }
@@ -95,7 +96,8 @@ int main(int argc, char** argv) {
   {
     queues::MpiLink link;
     if (link.size() != 3) {
-      if (link.rank() == 0) std::fprintf(stderr, "run with mpirun -np 3 (rank 0 waits, ranks 1 and 2 exchange)\n");
+      if (link.rank() == 0)
+        std::fprintf(stderr, "run with mpirun -np 3 (rank 0 waits, ranks 1 and 2 exchange)\n");
       MPI_Finalize();
       return 2;
     }
@@ -119,9 +121,9 @@ int main(int argc, char** argv) {
       }
       std::sort(rates.begin(), rates.end());
       if (link.rank() == 0)
-        std::printf("%-32s median %6.2f M rays/s (min %.2f, max %.2f; %ld rays of %zu bytes, %d runs)\n", config.name,
-                    rates[rates.size() / 2] / 1e6, rates.front() / 1e6, rates.back() / 1e6, rays, sizeof(Message),
-                    runs);
+        std::printf("%-32s median %6.2f M rays/s (min %.2f, max %.2f; %ld rays of %zu bytes, %d runs)\n",
+                    config.name, rates[rates.size() / 2] / 1e6, rates.front() / 1e6, rates.back() / 1e6, rays,
+                    sizeof(Message), runs);
     }
   }
   MPI_Finalize();

@@ -17,7 +17,7 @@ constexpr std::uint32_t kLeafSize = 1;
 // thread costs tens of microseconds, two thousand objects' build about a millisecond).
 constexpr int kSpawnLevels = 2;
 constexpr std::uint32_t kSpawnObjects = 4096;
-}
+}  // namespace
 
 std::vector<std::uint32_t> everyObjectOf(const Scene& scene) {
   std::vector<std::uint32_t> all(scene.objects.size());
@@ -42,7 +42,8 @@ BasicBvh<Real>::BasicBvh(const Scene& scene, const Whitted& shading, std::vector
   nodes_.reserve(2 * order_.size() + 1);
   Bins bins;
   if (!items.empty())
-    build(items, 0, std::uint32_t(items.size()), 0, bins, nodes_, on == BuildOn::EveryCore ? kSpawnLevels : 0);
+    build(items, 0, std::uint32_t(items.size()), 0, bins, nodes_,
+          on == BuildOn::EveryCore ? kSpawnLevels : 0);
   for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].object;
 }
 
@@ -56,7 +57,8 @@ BvhShape BasicBvh<Real>::shape() const {
   out.leafOf.assign(scene_.objects.size(), 0);
   for (std::uint32_t n = 0; n < nodes_.size(); ++n) {
     if (nodes_[n].count > 0) {
-      for (std::uint32_t i = nodes_[n].first; i < nodes_[n].first + nodes_[n].count; ++i) out.leafOf[order_[i]] = n;
+      for (std::uint32_t i = nodes_[n].first; i < nodes_[n].first + nodes_[n].count; ++i)
+        out.leafOf[order_[i]] = n;
     } else {
       out.parent[n + 1] = n;
       out.parent[nodes_[n].first] = n;
@@ -78,7 +80,7 @@ struct BasicBvh<Real>::Restriction {
   // whether it is 0 or at most largestLeaf, and an object's walk up from its leaf stops at the first node
   // already saturated, every node above it being saturated too (BM_BvhRestrict times it).
   std::vector<std::uint8_t> keptBelow;
-  std::vector<std::uint32_t> localOf;   // per whole object
+  std::vector<std::uint32_t> localOf;  // per whole object
   std::uint32_t largestLeaf;
   std::uint8_t saturated;
 };

@@ -172,8 +172,8 @@ struct TraversalSlack {
 
 template <class Real>
 template <class Visit>
-void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real& tLimit, TraceCounters& counters,
-                              Visit&& visit) const {
+void BasicBvh<Real>::traverse(const BasicRay<Real>& ray, Real tFrom, const Real& tLimit,
+                              TraceCounters& counters, Visit&& visit) const {
   if (nodes_.empty()) return;
   const InverseDirection<Real> inv(ray.direction);
   const TraversalSlack<Real> slack(ray);

@@ -778,7 +778,8 @@ Scene readNff(const std::filesystem::path& path, const NffOptions& options) {
   std::string text;
   std::array<char, 1 << 16> chunk;
   if (const auto size = std::filesystem::file_size(path, error); !error) text.reserve(size);
-  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) text.append(chunk.data(), std::size_t(in.gcount()));
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0)
+    text.append(chunk.data(), std::size_t(in.gcount()));
   if (in.bad()) throw SceneError(source, "cannot read the scene file");
   return parseNff(text, source, options);
 }

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <span>
+#include <stdexcept>
 #include <utility>
 
 #include "core/overloaded.h"
@@ -83,10 +83,10 @@ double sizeOf(const Object& object) {
 }
 
 const char* keywordOf(const Object& object) {
-  return std::visit(Overloaded{[](const Sphere&) { return "sphere 's'"; }, [](const Cone&) { return "cone 'c'"; },
-                               [](const Polygon&) { return "polygon 'p'"; },
-                               [](const Patch&) { return "patch 'pp'"; }},
-                    object.shape);
+  return std::visit(
+      Overloaded{[](const Sphere&) { return "sphere 's'"; }, [](const Cone&) { return "cone 'c'"; },
+                 [](const Polygon&) { return "polygon 'p'"; }, [](const Patch&) { return "patch 'pp'"; }},
+      object.shape);
 }
 
 // "scene.nff:12: the sphere 's'" or "object 12 (sphere 's')" for scenes built in code.
@@ -106,9 +106,9 @@ double Scene::largestCoordinate() const {
 
 void requireRenderable(const Scene& scene, Precision precision) {
   if (scene.lights.size() > kMaxLights)
-    throw std::invalid_argument(fmt::format(
-        "{}: {} lights; a ray names its light in 16 bits, so at most {} are supported",
-        scene.source.empty() ? scene.name : scene.source, scene.lights.size(), kMaxLights));
+    throw std::invalid_argument(
+        fmt::format("{}: {} lights; a ray names its light in 16 bits, so at most {} are supported",
+                    scene.source.empty() ? scene.name : scene.source, scene.lights.size(), kMaxLights));
   if (scene.objects.empty()) return;
   // The element that sets the scale, and the smallest object, which the rescaling would crush.
   std::string farthest = placeOf(scene, scene.camera.line, 0, "camera ('v' block)");
@@ -142,7 +142,6 @@ void requireRenderable(const Scene& scene, Precision precision) {
         doubleHolds ? "render with --precision double" : "move or remove it"));
   }
 }
-
 
 Scene scaledBy(Scene scene, double factor) {
   scene.camera.from *= factor;

@@ -3,8 +3,8 @@
 // materials ("f" lines) and primitives. The renderers and the machine read only this.
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -87,7 +87,9 @@ class Corners {
   const Vec3* end() const { return data() + size_; }
   const Vec3& operator[](std::size_t i) const { return data()[i]; }
   std::vector<Vec3> toVector() const { return std::vector<Vec3>(begin(), end()); }
-  friend bool operator==(const Corners& a, const Corners& b) { return std::equal(a.begin(), a.end(), b.begin(), b.end()); }
+  friend bool operator==(const Corners& a, const Corners& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end());
+  }
 
  private:
   std::array<Vec3, kInPlace> inPlace_{};

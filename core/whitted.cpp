@@ -31,7 +31,7 @@ void Whitted::shadeMiss(const BasicTracedRay<Real>& ray, BasicRayOutcome<Real>& 
 
 template <class Real>
 void Whitted::finishLightRay(const BasicTracedRay<Real>& ray, double transmission,
-                           BasicRayOutcome<Real>& out) const {
+                             BasicRayOutcome<Real>& out) const {
   if (transmission > 0)
     out.contributions.push_back(Contribution{ray.sample, transmission * Color(ray.weight)});
 }
@@ -150,9 +150,9 @@ void Whitted::spawnSecondaryRays(const BasicTracedRay<Real>& ray, const Material
   }
 }
 
-#define RAYCUBE_WHITTED_FOR(Real)                                                                         \
-  template Vec3Of<Real> spawnOrigin(const Vec3Of<Real>&, const Vec3Of<Real>&, Real);                      \
-  template void Whitted::shadeMiss(const BasicTracedRay<Real>&, BasicRayOutcome<Real>&) const;            \
+#define RAYCUBE_WHITTED_FOR(Real)                                                                           \
+  template Vec3Of<Real> spawnOrigin(const Vec3Of<Real>&, const Vec3Of<Real>&, Real);                        \
+  template void Whitted::shadeMiss(const BasicTracedRay<Real>&, BasicRayOutcome<Real>&) const;              \
   template void Whitted::finishLightRay(const BasicTracedRay<Real>&, double, BasicRayOutcome<Real>&) const; \
   template void Whitted::shadeHit(const BasicTracedRay<Real>&, const Hit&, BasicRayOutcome<Real>&) const;
 RAYCUBE_WHITTED_FOR(float)

@@ -1,7 +1,7 @@
 #pragma once
 // Priol & Bouatouch 3.7.2, deleting the light-ray messages: a processor may trace its light rays where they
-// start, against the objects the host found in its light volume (host/prepare/light_volume.h). What the node needs
-// of that: the mode, and where its light rays can start.
+// start, against the objects the host found in its light volume (host/prepare/light_volume.h). What the node
+// needs of that: the mode, and where its light rays can start.
 #include <cstdint>
 #include <vector>
 

@@ -6,9 +6,9 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
-#include <deque>
 #include <string>
 #include <utility>
 #include <vector>
@@ -205,7 +205,8 @@ class LogicalProcessor {
   std::atomic<int> lockedOn_{-1};
   std::atomic<std::uint64_t> stepsWorked_{0};
   core::BasicRayOutcome<Real> outcome_;
-  core::BasicRayOutcome<Real> lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
+  core::BasicRayOutcome<Real>
+      lightOutcome_;  // a light ray's, traced while outcome_'s spawned rays are delivered
   // Test memos (the "mailboxes" of the ray-tracing literature), with the paper's cells: an object met again
   // in a later cell of the same ray is not tested again. The cached t is the object's nearest hit over the
   // whole ray, the very number the reference renderer computes. Only up to the largest index the walk can

@@ -31,8 +31,8 @@ inline Face opposite(Face face) {
 inline constexpr std::uint32_t kNothingAhead = 0xffffffffu;
 
 // Ray state is in the precision Real of the render (--precision): 80 bytes in float, 128 in double. tEnter
-// and transmissionOrAheadT stay double: tEnter is where the sender's walk (in double) ended, and the reference
-// multiplies transmissions in double, so every chain of processors must too.
+// and transmissionOrAheadT stay double: tEnter is where the sender's walk (in double) ended, and the
+// reference multiplies transmissions in double, so every chain of processors must too.
 template <class Real>
 struct BasicRayMessage {
   core::BasicTracedRay<Real> ray;
@@ -44,8 +44,8 @@ struct BasicRayMessage {
   std::uint16_t destination = 0;  // processor that owns the region the ray enters
   std::uint8_t face = 0;          // face of the receiver it arrives through (statistics)
   // Closest-hit rays: the object whose nearest hit, found by the regions behind beyond their part of the
-  // ray, lies nearest (at t = transmissionOrAheadT; infinity: the object has no hit), so a region ahead takes that
-  // hit instead of testing the object again (a ray inside a sphere crosses many regions); kNothingAhead:
+  // ray, lies nearest (at t = transmissionOrAheadT; infinity: the object has no hit), so a region ahead takes
+  // that hit instead of testing the object again (a ray inside a sphere crosses many regions); kNothingAhead:
   // none. A global index, set only where the processors read the host's scene in place. In the padding.
   std::uint32_t ahead = kNothingAhead;
 };

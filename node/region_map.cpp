@@ -90,10 +90,12 @@ int RegionMap::ownerBeyond(int id, const EyeFrameRay& ray, double t, int sStep, 
   if (gridColumns_ > 0) return id + sStep + qStep * gridColumns_;
   // Along a face not crossed the ray is still within the region's range of samples.
   const SampleRect& a = areas_[id];
-  const int column =
-      sStep > 0 ? a.x1 : sStep < 0 ? a.x0 - 1 : lines_.sampleIndex(0, ray.screenAt(0, t), a.x0, a.x1);
-  const int row =
-      qStep > 0 ? a.y1 : qStep < 0 ? a.y0 - 1 : lines_.sampleIndex(1, ray.screenAt(1, t), a.y0, a.y1);
+  const int column = sStep > 0   ? a.x1
+                     : sStep < 0 ? a.x0 - 1
+                                 : lines_.sampleIndex(0, ray.screenAt(0, t), a.x0, a.x1);
+  const int row = qStep > 0   ? a.y1
+                  : qStep < 0 ? a.y0 - 1
+                              : lines_.sampleIndex(1, ray.screenAt(1, t), a.y0, a.y1);
   // Across a face: one of the few neighbours, whose areas are at hand (the owner table is a megabyte at
   // 512 x 512, and missing the cache in it cost a visible share of a run). Through a corner: the table.
   for (int n : neighbours_[id]) {

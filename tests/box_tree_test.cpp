@@ -1,6 +1,6 @@
-// The host's pruning index (host/prepare/box_tree.h) finds exactly what testing every box finds, in ascending order,
-// with or without taking whole the subtrees that lie inside the query (its shape a BVH's); the scene's cover
-// holds every box.
+// The host's pruning index (host/prepare/box_tree.h) finds exactly what testing every box finds, in ascending
+// order, with or without taking whole the subtrees that lie inside the query (its shape a BVH's); the scene's
+// cover holds every box.
 #include "host/prepare/box_tree.h"
 
 #include <gtest/gtest.h>
@@ -53,7 +53,8 @@ TEST(BoxTree, QueryFindsWhatTestingEveryBoxFinds) {
           if (b.lo[k] < region.lo[k] || b.hi[k] > region.hi[k]) return false;
         return true;
       };
-      EXPECT_EQ(tree.query([&](const core::Box& b) { return overlaps(b, region); }, inside), expected) << count;
+      EXPECT_EQ(tree.query([&](const core::Box& b) { return overlaps(b, region); }, inside), expected)
+          << count;
     }
     EXPECT_EQ(tree.query([](const core::Box&) { return true; }).size(), boxes.size());
   }

@@ -40,8 +40,8 @@ std::vector<Ray> raysThrough(const Scene& scene, int count, unsigned seed) {
 }
 
 template <class Real>
-void expectSameAnswers(const Scene& scene, const BasicBvh<Real>& kept,
-                       const BasicBvh<Real>& built, const std::vector<std::uint32_t>& objects) {
+void expectSameAnswers(const Scene& scene, const BasicBvh<Real>& kept, const BasicBvh<Real>& built,
+                       const std::vector<std::uint32_t>& objects) {
   const Scene only = partOf(scene, objects);  // what a tree over `objects` may answer with
   const Whitted onlyShading(only, ShadingOptions{});
   const BruteForce brute(only, onlyShading);
@@ -110,8 +110,12 @@ void checkRestrictions() {
   }
 }
 
-TEST(Bvh, KeptFromTheWholeScenesShapeAnswersAsOneBuiltAnew) { checkRestrictions<double>(); }
-TEST(Bvh, KeptFromTheWholeScenesShapeAnswersAsOneBuiltAnewInFloat) { checkRestrictions<float>(); }
+TEST(Bvh, KeptFromTheWholeScenesShapeAnswersAsOneBuiltAnew) {
+  checkRestrictions<double>();
+}
+TEST(Bvh, KeptFromTheWholeScenesShapeAnswersAsOneBuiltAnewInFloat) {
+  checkRestrictions<float>();
+}
 
 // Built on every core (subtrees on threads of their own, joined in place), the tree is the one a build on
 // one core makes: node for node, and box test for box test on every ray. Sombrero 3 (32,258 triangles) is

@@ -18,10 +18,10 @@
 #include <tuple>
 #include <vector>
 
-#include "core/spd/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "core/nff_writer.h"
+#include "core/spd/balls.h"
 #include "core/spd/generators.h"
 #include "host/render/sequential_renderers.h"
 #include "test_support.h"
@@ -40,7 +40,6 @@ std::string binaryPath() {
   return "";
 #endif
 }
-
 
 std::string quoted(const std::string& s) {
   std::string q = "'";
@@ -268,8 +267,9 @@ TEST_F(Cli, AnotherFormatCalledNffIsNamed) {
 TEST_F(Cli, CellStructuresRenderTheSameImage) {
   expectOneLineError("render --balls 1 --cells bogus -q -o x.png", {"--cells", "bogus"});
   for (const char* cells : {"paper", "bvh", "auto"}) {
-    const Outcome r = run(std::string("render --balls 3 --size 24x24 --mode machine --procs 2x2 -q --cells ") +
-                          cells + " -o " + cells + ".exr --stats " + cells + ".json");
+    const Outcome r =
+        run(std::string("render --balls 3 --size 24x24 --mode machine --procs 2x2 -q --cells ") + cells +
+            " -o " + cells + ".exr --stats " + cells + ".json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json stats = nlohmann::json::parse(slurp(dir_ / (std::string(cells) + ".json")));
     EXPECT_EQ(stats.at("machine").at("cells").get<std::string>(), cells);
@@ -288,7 +288,8 @@ TEST_F(Cli, CellStructuresRenderTheSameImage) {
     }
   }
   for (const char* cells : {"bvh", "auto"})
-    EXPECT_TRUE(core::bitIdentical(core::readExr(dir_ / "paper.exr"), core::readExr(dir_ / (std::string(cells) + ".exr"))))
+    EXPECT_TRUE(core::bitIdentical(core::readExr(dir_ / "paper.exr"),
+                                   core::readExr(dir_ / (std::string(cells) + ".exr"))))
         << cells;
 }
 
@@ -347,7 +348,8 @@ TEST_F(Cli, ChartsTakeTheirFormatFromTheExtension) {
 // Numbers past int's range are errors, never wrapped into range (4294967297 = 2^32 + 1 used to become 1).
 TEST_F(Cli, OverflowingSizesAndProcessorCountsAreErrors) {
   expectOneLineError("render --balls 1 --size 4294967297x4294967297 -q -o x.png", {"--size", "4294967297"});
-  expectOneLineError("render --balls 1 --size 16x16 --procs 4294967298x2 -q -o x.png", {"--procs", "4294967298"});
+  expectOneLineError("render --balls 1 --size 16x16 --procs 4294967298x2 -q -o x.png",
+                     {"--procs", "4294967298"});
   expectOneLineError("render --balls 1 --size 16x16 --procs 2x2x -q -o x.png", {"--procs"});
 }
 
@@ -362,7 +364,8 @@ TEST_F(Cli, UnwritableOutputsFailBeforeRendering) {
   expectOneLineError("render broken.nff -q -o x.jpg", {"x.jpg", ".png"});
   expectOneLineError("render broken.nff -q -o blocker/x.png", {"--output", "blocker/x.png"});
   expectOneLineError("render broken.nff -q -o x.png --stats blocker/s.json", {"--stats", "blocker/s.json"});
-  expectOneLineError("render broken.nff -q -o x.png --mode reference --overlay o.png", {"--overlay", "machine"});
+  expectOneLineError("render broken.nff -q -o x.png --mode reference --overlay o.png",
+                     {"--overlay", "machine"});
   EXPECT_FALSE(fs::exists(dir_ / "x.jpg"));
 }
 
@@ -420,13 +423,15 @@ TEST_F(Cli, TradeoffWritesPlotAndReport) {
   auto words = [](const std::string& svgText) {
     Words found;
     const std::regex element(">([^<]*)</text>"), number("[-+0-9.e]+");
-    for (auto it = std::sregex_iterator(svgText.begin(), svgText.end(), element); it != std::sregex_iterator();
-         ++it) {
+    for (auto it = std::sregex_iterator(svgText.begin(), svgText.end(), element);
+         it != std::sregex_iterator(); ++it) {
       std::stringstream label((*it)[1].str());
       for (std::string part; std::getline(label, part, ',');) {
         part.erase(0, part.find_first_not_of(' '));
-        if (std::regex_match(part, number)) found.numbers.insert(part);
-        else found.text.push_back(part);
+        if (std::regex_match(part, number))
+          found.numbers.insert(part);
+        else
+          found.text.push_back(part);
       }
     }
     return found;
@@ -439,14 +444,16 @@ TEST_F(Cli, TradeoffWritesPlotAndReport) {
 // host/engines/engine_module.h: SimGrid and Open MPI are loaded only for the runs that use them, and their
 // absence is said in one line naming where the module was looked for.
 TEST_F(Cli, EnginesModuleIsLoadedOnlyWhenARunNeedsIt) {
-  const std::string missing = "RAYCUBE_ENGINES=" + quoted((dir_ / "nowhere" / "raycube_engines.so").string()) + " ";
+  const std::string missing =
+      "RAYCUBE_ENGINES=" + quoted((dir_ / "nowhere" / "raycube_engines.so").string()) + " ";
   const Outcome threads = run("render --balls 1 --size 16x16 --mode machine --procs 2x2 -o x.png", missing);
   EXPECT_EQ(threads.exitCode, 0) << threads.err;
   EXPECT_TRUE(fs::exists(dir_ / "x.png"));
   fs::remove(dir_ / "x.png");
   expectOneLineError("render --balls 1 --size 16x16 --mode machine --procs 2x2 --emulate ipsc1 -o x.png",
                      {"raycube_engines", "nowhere/raycube_engines.so"}, missing);
-  expectOneLineError("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2", {"RAYCUBE_ENGINES"}, missing);
+  expectOneLineError("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2", {"RAYCUBE_ENGINES"},
+                     missing);
 }
 
 // The built-in machines are the shipped files host/machine/platforms/<name>.xml and .costs, and a simulated
@@ -492,11 +499,12 @@ TEST_F(Cli, PlatformFileErrorsNameTheFile) {
 }
 
 TEST_F(Cli, ScalingWritesPlotAndReport) {
-  const Outcome r =
-      run("scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2 --csv s.csv --plot s.svg --report s.html");
+  const Outcome r = run(
+      "scaling --balls 1 --size 16x16 --emulate ipsc1 --procs 1,2 --csv s.csv --plot s.svg --report s.html");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::string svg = slurp(dir_ / "s.svg");
-  for (const char* words : {">processors</text>", ">raycube (simulated)</text>", ">ideal (efficiency 1)</text>"})
+  for (const char* words :
+       {">processors</text>", ">raycube (simulated)</text>", ">ideal (efficiency 1)</text>"})
     EXPECT_NE(svg.find(words), std::string::npos) << words;
   const std::string html = slurp(dir_ / "s.html");
   EXPECT_NE(html.find(">Speed-up against processors"), std::string::npos) << "the plot, inline";

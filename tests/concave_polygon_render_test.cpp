@@ -26,7 +26,8 @@ TEST(ConcavePolygonRender, Gears4IsTheSameInEveryModeAndPrecision) {
     EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, settings).image, reference.image))
         << name << ": image-parallel";
     renderAndCompare(scene, reference, settings, MachineSettings{}, name + " machine 4x4 (defaults)");
-    renderAndCompare(scene, reference, settings, uniformGrid(3, 5, 8), name + " machine 3x5 uniform, capacity 8");
+    renderAndCompare(scene, reference, settings, uniformGrid(3, 5, 8),
+                     name + " machine 3x5 uniform, capacity 8");
   }
 }
 

@@ -21,7 +21,8 @@ fs::path writeCsv(const std::string& name, const std::string& text) {
 }
 
 TEST(CsvChart, EachColumnAfterTheFirstIsASeriesAndEmptyFieldsAreMissingPoints) {
-  const fs::path csv = writeCsv("cost", "primitives,image-parallel,machine 4x4\n10,0.8,0.9\n92,0.9,\n820,1.1,1.3\n");
+  const fs::path csv =
+      writeCsv("cost", "primitives,image-parallel,machine 4x4\n10,0.8,0.9\n92,0.9,\n820,1.1,1.3\n");
   const LineChart chart =
       lineChartFromCsv(csv, {.title = "Cost per ray", .caption = "", .yLabel = "us per ray", .logX = true});
   fs::remove(csv);

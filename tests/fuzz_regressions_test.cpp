@@ -46,7 +46,9 @@ TEST_P(FuzzRegression, PassesTheDifferentialOracle) {
 
 INSTANTIATE_TEST_SUITE_P(Corpus, FuzzRegression, ::testing::ValuesIn(regressions()), testNameOf);
 
-TEST(FuzzRegressionCorpus, IsNotEmpty) { EXPECT_GE(regressions().size(), 2u); }
+TEST(FuzzRegressionCorpus, IsNotEmpty) {
+  EXPECT_GE(regressions().size(), 2u);
+}
 
 // NFF as people wrote it (tests/data/nff/: free layout, no lights, degenerate polygons skipped, VM_pRAY's
 // hints): read, not refused, and the same image in every mode and precision.

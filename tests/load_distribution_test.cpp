@@ -4,14 +4,14 @@
 
 #include <random>
 
-#include "core/spd/balls.h"
 #include "core/intersect.h"
+#include "core/spd/balls.h"
 #include "core/whitted.h"
 #include "host/prepare/bsp_partition.h"
 #include "host/prepare/load_estimate.h"
-#include "host/report/machine_stats.h"
 #include "host/prepare/screen_partition.h"
 #include "host/render/sequential_renderers.h"
+#include "host/report/machine_stats.h"
 #include "machine_test_support.h"
 #include "node/region_map.h"
 
@@ -165,7 +165,8 @@ TEST(Bsp, LoadsAcrossLinesAreThoseOfEachLineWeighedApart) {
 }
 
 // Figure 9: a segment crossing a splitting line counts in both regions (ray metric); with the cost metric
-// each piece counts one whole (its message and walk set-up) and the work above it in proportion to its length.
+// each piece counts one whole (its message and walk set-up) and the work above it in proportion to its
+// length.
 TEST(LoadEstimate, SplitSegmentsCountOnBothSides) {
   LoadSample sample;
   sample.segments.push_back(ScreenSegment{1, 5, 9, 5, 8.0});
@@ -185,8 +186,8 @@ TEST(LoadEstimate, SplitSegmentsCountOnBothSides) {
 
 // Every area's load, clipping every segment against it in order: what estimateAreas' loads must equal exactly
 // (it only skips the areas far from a segment).
-std::vector<double> loadsAgainstEveryArea(const std::vector<node::SampleRect>& areas, const LoadSample& sample,
-                                          LoadMetric metric) {
+std::vector<double> loadsAgainstEveryArea(const std::vector<node::SampleRect>& areas,
+                                          const LoadSample& sample, LoadMetric metric) {
   int width = 0, height = 0;
   for (const node::SampleRect& a : areas) {
     width = std::max(width, a.x1);
@@ -215,9 +216,9 @@ TEST(LoadEstimate, NearbyAreasGiveExactlyTheLoadsOfEveryArea) {
     std::uniform_int_distribution<int> grid(0, side);
     for (int i = 0; i < 2000; ++i) {
       const double x = grid(random), y = grid(random);
-      sample.segments.push_back(ScreenSegment{x, y, x, y, 1.0 + i % 3});                   // a point
-      sample.segments.push_back(ScreenSegment{x, y, double(grid(random)), y, 2.0});       // along a row
-      sample.segments.push_back(ScreenSegment{x, y, x, double(grid(random)), 0.5});       // along a column
+      sample.segments.push_back(ScreenSegment{x, y, x, y, 1.0 + i % 3});             // a point
+      sample.segments.push_back(ScreenSegment{x, y, double(grid(random)), y, 2.0});  // along a row
+      sample.segments.push_back(ScreenSegment{x, y, x, double(grid(random)), 0.5});  // along a column
     }
     sample.raysPerSegment = 64;
     for (int p : {1, 3, 16, 64}) {

@@ -305,7 +305,8 @@ TEST_F(LogicalProcessorTest, ProcessorsSteppedInAnyOrderAgreeWithTheReferenceAnd
     std::vector<std::unique_ptr<LogicalProcessor<double>>> nodes;
     for (int id = 0; id < processors; ++id) {
       transports.push_back(std::make_unique<FakeTransport>(net, id));
-      nodes.push_back(std::make_unique<LogicalProcessor<double>>(context, setupFor(context, id), *transports[id]));
+      nodes.push_back(
+          std::make_unique<LogicalProcessor<double>>(context, setupFor(context, id), *transports[id]));
     }
     // Round-robin, backwards, a different number of steps per node each turn: any order must do.
     for (int turn = 0; !net.terminated; ++turn) {
@@ -319,7 +320,8 @@ TEST_F(LogicalProcessorTest, ProcessorsSteppedInAnyOrderAgreeWithTheReferenceAnd
         spawned[k] += n->stats().spawned[k];
         finished[k] += n->stats().finished[k];
       }
-      EXPECT_EQ(n->segmentsEvaluated(), n->stats().processed.totalRays()) << "what progress reads, at the end";
+      EXPECT_EQ(n->segmentsEvaluated(), n->stats().processed.totalRays())
+          << "what progress reads, at the end";
     }
     EXPECT_EQ(spawned, finished);
     for (const auto& [edge, fifo] : net.fifos) EXPECT_TRUE(fifo.empty()) << "a ray left in a FIFO";

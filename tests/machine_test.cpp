@@ -1,9 +1,7 @@
-// The message-passing machine (host/machine/machine_settings.h) renders exactly what the one-thread reference renders, bit
-// for bit, whatever the processor grid and FIFO capacity: every ray is spawned once and finished once,
-// every contribution reaches the host, eye rays never leave their processor (3.1), and the space behind
+// The message-passing machine (host/machine/machine_settings.h) renders exactly what the one-thread reference
+// renders, bit for bit, whatever the processor grid and FIFO capacity: every ray is spawned once and finished
+// once, every contribution reaches the host, eye rays never leave their processor (3.1), and the space behind
 // the eye plane, which no pyramid covers, is traced too.
-#include "host/render/render_machine.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,12 +12,13 @@
 #include <variant>
 #include <vector>
 
-#include "core/spd/balls.h"
-#include "host/report/machine_stats.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
+#include "core/spd/balls.h"
 #include "core/view.h"
+#include "host/render/render_machine.h"
 #include "host/render/sequential_renderers.h"
+#include "host/report/machine_stats.h"
 #include "machine_test_support.h"
 #include "node/eye_box.h"
 
@@ -107,8 +106,7 @@ TEST(MachineTest, LightConesAndPyramidsDeleteLightRayMessagesAndKeepTheImage) {
 // with light pyramids (which degenerate to "every object" where the light lies among a region's sources)
 // there are none, and the image does not change.
 TEST(MachineTest, LightAmongTheObjectsSendsLightRaysOnlyAsMessages) {
-  const core::Scene scene =
-      core::readNff(testing_support::scenePath("lamp_among_balls.nff"));
+  const core::Scene scene = core::readNff(testing_support::scenePath("lamp_among_balls.nff"));
   const RenderSettings settings = settingsFor(sanitized() ? 16 : 48);
   const RenderResult reference = renderReference(scene, settings);
   std::uint64_t lightMessages[2] = {};
@@ -201,8 +199,7 @@ std::vector<SceneCase> sceneCases() {
                                          {"balls4.nff", 24},  {"gears1.nff", 32}, {"jacks1.nff", 40},
                                          {"teapot2.nff", 32}, {"tree1.nff", 40}};
   std::vector<SceneCase> cases;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(testing_support::sourcePath("scenes")))
+  for (const auto& entry : std::filesystem::directory_iterator(testing_support::sourcePath("scenes")))
     if (entry.path().extension() == ".nff") {
       const std::string file = entry.path().filename().string();
       const auto side = sides.find(file);
@@ -255,7 +252,8 @@ TEST(MachineTest, ReflectionsBehindTheEyeMatchReference) {
   const RenderSettings settings = settingsFor(side);
   // The red sphere lies wholly behind the eye plane: no pyramid holds it, every processor does.
   const core::View view(withRear.camera, side, side, settings.sampling);
-  ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(withRear.objects[1], view, 2 * withRear.largestCoordinate())));
+  ASSERT_TRUE(
+      node::reachesBehindEye(node::eyeBoxOf(withRear.objects[1], view, 2 * withRear.largestCoordinate())));
 
   const RenderResult reference = renderReference(withRear, settings);
   const RenderResult referenceWithout = renderReference(without, settings);
@@ -299,12 +297,13 @@ TEST(MachineTest, MatteScenesHoldNoLightVolumeBehindTheEye) {
   for (int mirror = 0; mirror < 2; ++mirror) {
     const core::Scene scene = core::parseNff(pebblesAboveTheView(mirror ? 0.5 : 0), "pebbles.nff");
     const core::View view(scene.camera, side, side, settings.sampling);
-    ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[0], view, 2 * scene.largestCoordinate())));
+    ASSERT_TRUE(
+        node::reachesBehindEye(node::eyeBoxOf(scene.objects[0], view, 2 * scene.largestCoordinate())));
     const std::string label = mirror ? "pebbles, mirror ground" : "pebbles, matte ground";
     const RenderResult reference = renderReference(scene, settings);
     MachineReport report;
-    const RenderResult machine =
-        renderMachineWatched(scene, settings, machineFor({4, 4}, 8, node::LightRayMode::Pyramid), report, label);
+    const RenderResult machine = renderMachineWatched(
+        scene, settings, machineFor({4, 4}, 8, node::LightRayMode::Pyramid), report, label);
     expectMachineMatchesReference(reference, machine, report, label);
     for (const ProcessorReport& p : report.processors) held[mirror] += p.node.heldObjects;
   }
@@ -357,7 +356,8 @@ TEST(MachineTest, ObjectsStraddlingTheEyePlaneMatchReference) {
   const RenderSettings settings = settingsFor(side);
   const core::View view(scene.camera, side, side, settings.sampling);
   for (std::size_t o : {std::size_t(1), std::size_t(2)})
-    ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[o], view, 2 * scene.largestCoordinate()))) << "object " << o;
+    ASSERT_TRUE(node::reachesBehindEye(node::eyeBoxOf(scene.objects[o], view, 2 * scene.largestCoordinate())))
+        << "object " << o;
   const RenderResult reference = renderReference(scene, settings);
   for (Grid g : {Grid{1, 1}, Grid{2, 2}, Grid{3, 5}, Grid{8, 8}})
     for (std::size_t capacity : {std::size_t(1), std::size_t(8)})
@@ -441,7 +441,8 @@ TEST(MachineTest, PreprocessingPhasesLieWithinThePreprocessingTime) {
   MachineReport report;
   const RenderResult result = renderMachine(scene, settingsFor(32), machine, &report);
   const PreprocessingSeconds& pre = report.preprocessing;
-  for (double phase : {pre.sampling, pre.partitioning, pre.pruning, pre.cells, pre.mapping}) EXPECT_GT(phase, 0);
+  for (double phase : {pre.sampling, pre.partitioning, pre.pruning, pre.cells, pre.mapping})
+    EXPECT_GT(phase, 0);
   EXPECT_LE(pre.sampling + pre.partitioning + pre.pruning + pre.cells, result.preprocessSeconds);
   const nlohmann::json json = machineJson(report).at("preprocessingSeconds");
   EXPECT_EQ(json.at("pruning").get<double>(), pre.pruning);

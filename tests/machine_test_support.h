@@ -15,7 +15,8 @@ namespace raycube::host::testing_support {
 using namespace raycube::testing_support;
 
 // A side x side render without progress output; threads 0 lets the image-parallel renderer choose.
-inline RenderSettings settingsFor(int side, core::Sampling sampling = core::Sampling::Centers, int threads = 0) {
+inline RenderSettings settingsFor(int side, core::Sampling sampling = core::Sampling::Centers,
+                                  int threads = 0) {
   RenderSettings s;
   s.width = side;
   s.height = side;
@@ -55,7 +56,8 @@ inline long firstNonFinitePixel(const core::Image& image) {
 
 inline std::size_t nonFinitePixels(const core::Image& image) {
   std::size_t count = 0;
-  for (const core::Color& c : image.pixels) count += std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) ? 0 : 1;
+  for (const core::Color& c : image.pixels)
+    count += std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) ? 0 : 1;
   return count;
 }
 

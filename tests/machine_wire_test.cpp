@@ -145,7 +145,8 @@ TEST(MachineWireTest, JobComesBackAsItLeft) {
   EXPECT_EQ(held.lights.size(), scene.lights.size());
   EXPECT_EQ(held.materials.size(), scene.materials.size());
   ASSERT_EQ(held.objects.size(), setup.database->scene.objects.size());
-  for (std::size_t k = 0; k < held.objects.size(); ++k) expectSameObject(held.objects[k], setup.database->scene.objects[k]);
+  for (std::size_t k = 0; k < held.objects.size(); ++k)
+    expectSameObject(held.objects[k], setup.database->scene.objects[k]);
   // The cone and the patch are among the objects held (the last two of the scene).
   EXPECT_EQ(held.objects.back().shape.index(), 3u);
 }
@@ -191,7 +192,8 @@ TEST(MachineWireTest, MessageCutShortIsAnError) {
   const core::Scene scene = everyShape();
   const node::MachineContext context = contextOf(scene);
   const node::NodeSetup setup = setupOf(scene, context);
-  const std::vector<char> bytes = encodeJob(JobSettings{.rankOf = {1, 1, 1, 1}}, context, std::span(&setup, 1));
+  const std::vector<char> bytes =
+      encodeJob(JobSettings{.rankOf = {1, 1, 1, 1}}, context, std::span(&setup, 1));
   for (std::size_t cut : {std::size_t(0), std::size_t(3), bytes.size() / 2, bytes.size() - 1})
     EXPECT_THROW(decodeJob(std::span(bytes.data(), cut)), std::runtime_error) << "cut at " << cut;
 }

@@ -162,8 +162,8 @@ const std::string kHeader = kView + "f 1 1 1 1 0 0 0 1\n";                      
 struct BadCase {
   const char* name;
   std::string text;
-  const char* where;   // "line:column"
-  const char* phrase;  // part of the message a user acts on
+  const char* where;    // "line:column"
+  const char* phrase;   // part of the message a user acts on
   bool strict = false;  // refused only when read strictly (--strict)
 };
 
@@ -331,8 +331,9 @@ TEST(NffReader, HugeAndTinyButValidGeometryIsAccepted) {
   };
   EXPECT_NO_THROW(parseNff(view("0 0 -1e200") + "f 1 1 1 1 0 0 0 0\ns 0 0 0 1\n", "far.nff"));
   EXPECT_NO_THROW(parseNff(view("0 0 -1e-300") + "f 1 1 1 1 0 0 0 0\ns 0 0 0 1e-301\n", "near.nff"));
-  const Scene tiny = parseNff(view("0 0 -5") + "f 1 1 1 1 0 0 0 0\np 3\n0 0 0\n1e-78 0 0\n0 1e-78 0\n"
-                                               "pp 3\n0 0 0 0 0 1\n1e-300 0 0 0 0 1\n0 1e-300 0 0 0 1\n",
+  const Scene tiny = parseNff(view("0 0 -5") +
+                                  "f 1 1 1 1 0 0 0 0\np 3\n0 0 0\n1e-78 0 0\n0 1e-78 0\n"
+                                  "pp 3\n0 0 0 0 0 1\n1e-300 0 0 0 0 1\n0 1e-300 0 0 0 1\n",
                               "tiny.nff");
   EXPECT_EQ(tiny.objects.size(), 2u);
   const std::string line = view("0 0 -5") + "f 1 1 1 1 0 0 0 0\np 3\n0 0 0\n1e-78 0 0\n2e-78 0 0\n";

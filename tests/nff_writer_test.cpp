@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "core/spd/balls.h"
 #include "core/nff_reader.h"
+#include "core/spd/balls.h"
 #include "scene_equality.h"
 #include "test_support.h"
 

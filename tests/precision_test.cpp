@@ -13,9 +13,9 @@
 #include <variant>
 #include <vector>
 
-#include "core/spd/balls.h"
 #include "core/image.h"
 #include "core/intersect.h"
+#include "core/spd/balls.h"
 #include "core/tolerances.h"
 #include "host/render/render_machine.h"
 #include "host/render/sequential_renderers.h"

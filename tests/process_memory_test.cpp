@@ -1,5 +1,5 @@
-// The program's heap (host/util/process_memory.h): on huge pages where the kernel offers them, so that a large
-// block faults in a few times rather than once per 4 KB page.
+// The program's heap (host/util/process_memory.h): on huge pages where the kernel offers them, so that a
+// large block faults in a few times rather than once per 4 KB page.
 #include "host/util/process_memory.h"
 
 #include <gtest/gtest.h>

@@ -232,7 +232,8 @@ TEST(MachineProgress, SimulatedTimeReportsThePhasesAndTheWork) {
   std::vector<ProgressSnapshot> heard;
   line.listen([&](const ProgressSnapshot& s) { heard.push_back(s); });
   MachineReport report;
-  testing_support::renderMachineWatched(scene, testing_support::settingsFor(96), m, report, "simulated progress");
+  testing_support::renderMachineWatched(scene, testing_support::settingsFor(96), m, report,
+                                        "simulated progress");
   expectTheMachinesPhasesAndWork(heard, "simulated");
   const auto counts = std::count_if(heard.begin(), heard.end(), [](const ProgressSnapshot& s) {
     return s.phase == "tracing" && s.fraction > 0 && s.fraction < 1;

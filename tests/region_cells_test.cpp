@@ -8,8 +8,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "core/spd/balls.h"
 #include "core/brute_force.h"
+#include "core/spd/balls.h"
 #include "node/region_map.h"
 
 namespace raycube::node {

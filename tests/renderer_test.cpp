@@ -1,5 +1,6 @@
-// The two yardsticks (host/render/sequential_renderers.h) agree bit for bit, on every shipped scene, whatever the
-// thread count and run after run: the promise the fixed-point frame buffer makes (host/render/framebuffer.h).
+// The two yardsticks (host/render/sequential_renderers.h) agree bit for bit, on every shipped scene, whatever
+// the thread count and run after run: the promise the fixed-point frame buffer makes
+// (host/render/framebuffer.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/spd/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
+#include "core/spd/balls.h"
 #include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 
@@ -26,8 +27,7 @@ int imageSide() {
 // "" stands for the built-in balls scene of size 2; anything else is a file in scenes/.
 std::vector<std::string> sceneNames() {
   std::vector<std::string> names{""};
-  for (const auto& entry :
-       std::filesystem::directory_iterator(testing_support::sourcePath("scenes")))
+  for (const auto& entry : std::filesystem::directory_iterator(testing_support::sourcePath("scenes")))
     if (entry.path().extension() == ".nff") names.push_back(entry.path().filename().string());
   std::sort(names.begin() + 1, names.end());
   return names;

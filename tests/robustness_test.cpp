@@ -11,18 +11,17 @@
 #include <stdexcept>
 #include <string>
 
-#include "host/render/framebuffer.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
 #include "core/precision.h"
+#include "host/render/framebuffer.h"
 #include "host/render/render_machine.h"
 #include "host/render/sequential_renderers.h"
 
 namespace raycube::host {
 namespace {
 
-const char* kView =
-    "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n";
+const char* kView = "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n";
 
 RenderSettings tiny(core::Precision precision = core::Precision::Double) {
   RenderSettings s;
@@ -41,7 +40,8 @@ MachineSettings smallMachine() {
 void expectEveryModeMatchesReference(const core::Scene& scene, const RenderSettings& settings) {
   const core::Image reference = renderReference(scene, settings).image;
   EXPECT_TRUE(core::bitIdentical(renderImageParallel(scene, settings).image, reference)) << "image-parallel";
-  EXPECT_TRUE(core::bitIdentical(renderMachine(scene, settings, smallMachine()).image, reference)) << "machine";
+  EXPECT_TRUE(core::bitIdentical(renderMachine(scene, settings, smallMachine()).image, reference))
+      << "machine";
 }
 
 // Class 1: each BVH split peels off one sphere; the tree would be 79 levels deep, past the traversal stack.
@@ -178,8 +178,8 @@ TEST(Robustness, TheFloatSpanLimitIsWhereTheMessageSaysAndNamesTheObjects) {
     FAIL() << "expected std::invalid_argument past float's span";
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
-    for (const char* words : {"span.nff:11: the sphere 's'", "span.nff:10: the sphere 's'", "float arithmetic",
-                              "below 2^29", "--precision double"})
+    for (const char* words : {"span.nff:11: the sphere 's'", "span.nff:10: the sphere 's'",
+                              "float arithmetic", "below 2^29", "--precision double"})
       EXPECT_NE(message.find(words), std::string::npos) << words << " in: " << message;
   }
 }
@@ -190,8 +190,9 @@ TEST(Robustness, ScenesThatAreNotRegularFilesAreRefused) {
     core::readNff("/dev/zero");
     FAIL() << "expected a SceneError";
   } catch (const core::SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("/dev/zero: expected a regular scene file, found a character device"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("/dev/zero: expected a regular scene file, found a character device"),
+        std::string::npos)
         << e.what();
   }
   const std::filesystem::path fifo =

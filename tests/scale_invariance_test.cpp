@@ -14,9 +14,9 @@
 #include <variant>
 #include <vector>
 
-#include "core/spd/balls.h"
 #include "core/image.h"
 #include "core/nff_reader.h"
+#include "core/spd/balls.h"
 #include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
 

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "core/spd/balls.h"
 #include "core/nff_reader.h"
+#include "core/spd/balls.h"
 #include "core/whitted.h"
 #include "test_support.h"
 

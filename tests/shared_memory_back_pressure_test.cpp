@@ -1,6 +1,7 @@
-// Machine-wide back-pressure on the shared-memory interconnect (queues/interconnects/shared_memory_interconnect.h): the
-// processors' reports of waiting rays add up; primaries are held from the limit until fewer than the release
-// wait, on every processor at once; and letting go wakes a processor asleep for it.
+// Machine-wide back-pressure on the shared-memory interconnect
+// (queues/interconnects/shared_memory_interconnect.h): the processors' reports of waiting rays add up;
+// primaries are held from the limit until fewer than the release wait, on every processor at once; and
+// letting go wakes a processor asleep for it.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -1,6 +1,6 @@
-// Waking on the shared-memory interconnect (queues/interconnects/shared_memory_interconnect.h): a processor asleep for
-// rays is woken once per step of the neighbour that sent them (ringNeighbours), not by every push; no
-// wake-up may be lost, or two processors waiting for each other's rays would sleep for ever.
+// Waking on the shared-memory interconnect (queues/interconnects/shared_memory_interconnect.h): a processor
+// asleep for rays is woken once per step of the neighbour that sent them (ringNeighbours), not by every push;
+// no wake-up may be lost, or two processors waiting for each other's rays would sleep for ever.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -42,14 +42,16 @@ TEST_P(SpdDefaultSizes, MachineIsBitIdenticalOnEveryPartition) {
   MachineSettings bsp;
   bsp.rows = 3;
   bsp.columns = 5;
-  std::vector<Partition> partitions{{uniformGrid(4, 4, 8), "uniform 4x4"},
-                                    {uniformGrid(2, 3, 128, node::LightRayMode::Messages), "uniform 2x3, messages"},
-                                    {bsp, "bsp of 15, float", true}};
+  std::vector<Partition> partitions{
+      {uniformGrid(4, 4, 8), "uniform 4x4"},
+      {uniformGrid(2, 3, 128, node::LightRayMode::Messages), "uniform 2x3, messages"},
+      {bsp, "bsp of 15, float", true}};
   for (Partition& p : partitions) {
     p.machine.cells = GetParam().cells;
     const std::string label = GetParam().path + ", " + p.label;
     MachineReport report;
-    const RenderResult result = renderMachineWatched(scene, p.inFloat ? inFloat : settings, p.machine, report, label);
+    const RenderResult result =
+        renderMachineWatched(scene, p.inFloat ? inFloat : settings, p.machine, report, label);
     expectMachineMatchesReference(p.inFloat ? floatYardstick : yardstick, result, report, label);
     // Auto gives every region a BVH on threads; paper never does.
     std::size_t withBvh = 0;
@@ -62,14 +64,15 @@ TEST_P(SpdDefaultSizes, MachineIsBitIdenticalOnEveryPartition) {
 std::string caseName(const testing::TestParamInfo<Case>& info) {
   const std::string& path = info.param.path;
   const std::string file = path.substr(path.rfind('/') + 1);
-  return file.substr(0, file.find('.')) + (info.param.cells == node::CellStructure::Paper ? "_paper" : "_auto");
+  return file.substr(0, file.find('.')) +
+         (info.param.cells == node::CellStructure::Paper ? "_paper" : "_auto");
 }
 
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const char* path : {"scenes/balls4.nff", "scenes/gears4.nff", "scenes/shells5.nff", "scenes/tree11.nff",
-                            "scenes/rings7.nff", "scenes/mount6.nff", "scenes/tetra6.nff", "scenes/lattice12.nff",
-                            "scenes/jacks4.nff", "scenes/sombrero3.nff"})
+  for (const char* path : {"scenes/balls4.nff", "scenes/gears4.nff", "scenes/shells5.nff",
+                           "scenes/tree11.nff", "scenes/rings7.nff", "scenes/mount6.nff", "scenes/tetra6.nff",
+                           "scenes/lattice12.nff", "scenes/jacks4.nff", "scenes/sombrero3.nff"})
     for (node::CellStructure cells : {node::CellStructure::Paper, node::CellStructure::Auto})
       all.push_back({path, cells});
   return all;

@@ -1,8 +1,7 @@
-// The built-in SPD generators (core/spd/generators.h) against what the SPD documents: primitive counts per size
-// (SPD-README's "total prim." at the default sizes, the C files' header tables otherwise), and the committed
-// default-size scenes/*.nff, which are the generators' output (and byte for byte the SPD programs' own).
-#include "core/spd/generators.h"
-
+// The built-in SPD generators (core/spd/generators.h) against what the SPD documents: primitive counts per
+// size (SPD-README's "total prim." at the default sizes, the C files' header tables otherwise), and the
+// committed default-size scenes/*.nff, which are the generators' output (and byte for byte the SPD programs'
+// own).
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -10,9 +9,10 @@
 #include <string>
 #include <variant>
 
-#include "core/spd/balls.h"
 #include "core/nff_reader.h"
 #include "core/nff_writer.h"
+#include "core/spd/balls.h"
+#include "core/spd/generators.h"
 #include "scene_equality.h"
 #include "test_support.h"
 

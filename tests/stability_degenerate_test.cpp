@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/nff_reader.h"
 #include "core/spd/balls.h"
 #include "core/spd/facing_mirrors.h"
-#include "core/nff_reader.h"
 #include "stability_test_support.h"
 
 namespace raycube::host {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/spd/balls.h"
 #include "core/image.h"
+#include "core/spd/balls.h"
 #include "host/render/render_machine.h"
 #include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"

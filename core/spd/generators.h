@@ -3,8 +3,8 @@
 // program prints with "-s size" in OUTPUT_CURVES mode (the ray-tracing timing format), object for object
 // and in the same order, with the same view, lights, materials and background. Scene::name is
 // "<name><size>" (rings7, mount6, ...). Every number is rounded as the SPD prints it ("%g"), so written back
-// with core/nff_writer.h the scene is the SPD program's text, byte for byte; balls (core/spd/balls.h) is the one
-// generator that keeps full doubles.
+// with core/nff_writer.h the scene is the SPD program's text, byte for byte; balls (core/spd/balls.h) is the
+// one generator that keeps full doubles.
 #include <span>
 #include <string_view>
 

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/spd/generators.h"
 #include "core/spd/matrix.h"
 #include "core/spd/output.h"
-#include "core/spd/generators.h"
 
 namespace raycube::core {
 

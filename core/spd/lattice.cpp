@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/spd/output.h"
 #include "core/spd/generators.h"
+#include "core/spd/output.h"
 
 namespace raycube::core {
 

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <numbers>
 
+#include "core/spd/generators.h"
 #include "core/spd/matrix.h"
 #include "core/spd/output.h"
-#include "core/spd/generators.h"
 
 namespace raycube::core {
 

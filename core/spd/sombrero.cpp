@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/spd/output.h"
 #include "core/spd/generators.h"
+#include "core/spd/output.h"
 
 namespace raycube::core {
 

@@ -54,7 +54,7 @@ struct RenderCommand {
   std::string statsPath;
   bool quiet = false;
   bool strict = false;  // refuse a degenerate polygon or patch instead of skipping it
-  std::string procs;  // empty: 4x4, or what fits a smaller image
+  std::string procs;    // empty: 4x4, or what fits a smaller image
   std::string overlayPath;
   std::string loadChartPath;
   std::string reportPath;

@@ -23,7 +23,8 @@ class EngineModule {
       const MachineSettings& settings, const std::vector<std::uint32_t>& hypercubeNode) const = 0;
   virtual std::unique_ptr<MachineEngine<double>> makeDouble(
       const MachineSettings& settings, const std::vector<std::uint32_t>& hypercubeNode) const = 0;
-  // host/engines/mpi/mpi_session.h: starts MPI, runs hostMain on rank 0 and serves renders on the other ranks.
+  // host/engines/mpi/mpi_session.h: starts MPI, runs hostMain on rank 0 and serves renders on the other
+  // ranks.
   virtual int runUnderMpi(int argc, char** argv, const std::function<int()>& hostMain) const = 0;
   // Whether this process is rank 0 of mpirun, inside runUnderMpi's hostMain.
   virtual bool hostsMpiRanks() const = 0;

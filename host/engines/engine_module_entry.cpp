@@ -1,5 +1,5 @@
-// The module raycube_engines.so (host/engines/engine_module.h): the engines on SimGrid and Open MPI, provided to the
-// program as the module is loaded (or, in a program linking these objects, before main).
+// The module raycube_engines.so (host/engines/engine_module.h): the engines on SimGrid and Open MPI, provided
+// to the program as the module is loaded (or, in a program linking these objects, before main).
 #include <stdexcept>
 
 #include "host/engines/engine_module.h"
@@ -34,7 +34,8 @@ class Engines final : public EngineModule {
         throw std::invalid_argument("the MPI engine runs on real ranks, not in simulated time");
       queues::MpiLink* link = hostMpiLink();
       if (link == nullptr)
-        throw std::invalid_argument("the MPI engine runs on rank 0 of mpirun (host/engines/mpi/mpi_session.h)");
+        throw std::invalid_argument(
+            "the MPI engine runs on rank 0 of mpirun (host/engines/mpi/mpi_session.h)");
       return std::make_unique<MpiMachine<Real>>(*link, fifoRaysFor(settings), settings.rayBatch,
                                                 settings.jitterSeed);
     }

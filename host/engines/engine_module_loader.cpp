@@ -1,5 +1,3 @@
-#include "host/engines/engine_module.h"
-
 #include <dlfcn.h>
 
 #include <cstdlib>
@@ -8,6 +6,8 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+
+#include "host/engines/engine_module.h"
 
 namespace raycube::host {
 namespace {

@@ -138,14 +138,15 @@ std::shared_ptr<const node::RegionDatabase> readDatabase(WireReader& in) {
   return database;
 }
 
-// Processors holding the same objects share one database (host/render/render_machine.cpp): it travels once per job, and
-// the setups name it by its place in the job's table, so the rank shares it again.
+// Processors holding the same objects share one database (host/render/render_machine.cpp): it travels once
+// per job, and the setups name it by its place in the job's table, so the rank shares it again.
 using DatabaseTable = std::vector<const node::RegionDatabase*>;
 
 DatabaseTable databasesOf(std::span<const node::NodeSetup> setups) {
   DatabaseTable table;
   for (const node::NodeSetup& s : setups)
-    if (std::find(table.begin(), table.end(), s.database.get()) == table.end()) table.push_back(s.database.get());
+    if (std::find(table.begin(), table.end(), s.database.get()) == table.end())
+      table.push_back(s.database.get());
   return table;
 }
 
@@ -153,7 +154,8 @@ void writeSetup(WireWriter& out, const node::NodeSetup& setup, const DatabaseTab
   out.value(setup.id);
   out.value(setup.cells);
   out.value(setup.cellLevel);
-  out.value(std::uint64_t(std::find(databases.begin(), databases.end(), setup.database.get()) - databases.begin()));
+  out.value(
+      std::uint64_t(std::find(databases.begin(), databases.end(), setup.database.get()) - databases.begin()));
   out.vector(setup.objects);
   out.vector(setup.objectBoxes);
   out.vector(setup.rearObjects);
@@ -171,7 +173,8 @@ node::NodeSetup readSetup(WireReader& in,
   setup.cells = in.value<node::CellStructure>();
   setup.cellLevel = in.value<int>();
   const std::uint64_t database = in.value<std::uint64_t>();
-  if (database >= databases.size()) throw std::runtime_error("a job names a region database it does not hold");
+  if (database >= databases.size())
+    throw std::runtime_error("a job names a region database it does not hold");
   setup.database = databases[database];
   setup.objects = in.vector<std::uint32_t>();
   setup.objectBoxes = in.vector<node::EyeBox>();

@@ -12,7 +12,8 @@
 namespace raycube::host {
 
 template <class Real, class Interconnect>
-void driveNodeThread(node::LogicalProcessor<Real>& node, Interconnect& interconnect, int id, ProcessorReport& times) {
+void driveNodeThread(node::LogicalProcessor<Real>& node, Interconnect& interconnect, int id,
+                     ProcessorReport& times) {
   for (;;) {
     const node::Step step = node.step(node::scheduling::kPrimariesPerStep);
     interconnect.ringNeighbours(id);
@@ -21,8 +22,7 @@ void driveNodeThread(node::LogicalProcessor<Real>& node, Interconnect& interconn
     const auto start = Clock::now();
     const bool blocked = node.blocked();
     interconnect.waitFor(id, [&] { return node.readyToStep(); });
-    (blocked ? times.blockedSeconds : times.idleSeconds) +=
-        secondsSince(start);
+    (blocked ? times.blockedSeconds : times.idleSeconds) += secondsSince(start);
   }
 }
 

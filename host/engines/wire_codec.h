@@ -1,7 +1,8 @@
 #pragma once
 // Values, vectors and strings as bytes in the machine's own layout (every address space runs the same
 // binary on the same kind of host), over any byte sink or source: a buffer for MPI messages
-// (host/engines/machine_wire.h), a pipe for the simulation's results (host/engines/simgrid/emulated_machine.cpp).
+// (host/engines/machine_wire.h), a pipe for the simulation's results
+// (host/engines/simgrid/emulated_machine.cpp).
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -62,7 +63,8 @@ class WireDecoder {
   std::vector<T> vector() {
     static_assert(std::is_trivially_copyable_v<T>);
     const auto n = value<std::uint64_t>();
-    constexpr std::size_t kMost = std::numeric_limits<std::size_t>::max() / std::max<std::size_t>(1, sizeof(T));
+    constexpr std::size_t kMost =
+        std::numeric_limits<std::size_t>::max() / std::max<std::size_t>(1, sizeof(T));
     source_.expect(n > kMost ? std::numeric_limits<std::size_t>::max() : n * sizeof(T));
     std::vector<T> v(n);
     bytes(v.data(), n * sizeof(T));

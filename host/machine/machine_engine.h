@@ -17,7 +17,7 @@ namespace raycube::host {
 
 struct EngineHooks {
   core::ContributionSink* host = nullptr;  // the host's accumulation: called from one thread at a time
-  std::function<void()> synthesisStarts;    // every node has subdivided its region: preprocessing ends
+  std::function<void()> synthesisStarts;   // every node has subdivided its region: preprocessing ends
   // Ray segments each processor has evaluated so far, in processor order (progress): called now and then
   // by the host's loop while tracing.
   std::function<void(const std::vector<std::uint64_t>& segmentsEvaluated)> progress;

@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 #include <vector>
-#include "host/machine/deadlock.h"
 
+#include "host/machine/deadlock.h"
 #include "host/machine/machine_settings.h"
 #include "node/logical_processor.h"
 #include "queues/queue_stats.h"
@@ -52,9 +52,9 @@ struct EmulatedRun {
 // A run over MPI (the MPI engine): what each rank held and what crossed between ranks.
 struct RankReport {
   int rank = 0;
-  int processors = 0;            // logical processors it ran (the host, rank 0, runs none)
-  std::uint64_t objects = 0;     // objects its processors held, each its own copy (RegionDatabase)
-  std::uint64_t jobBytes = 0;    // the setups and context it received (rank 0: sent to all)
+  int processors = 0;              // logical processors it ran (the host, rank 0, runs none)
+  std::uint64_t objects = 0;       // objects its processors held, each its own copy (RegionDatabase)
+  std::uint64_t jobBytes = 0;      // the setups and context it received (rank 0: sent to all)
   std::uint64_t peakRssBytes = 0;  // its process's peak resident memory (getrusage)
   std::uint64_t messagesSent = 0, bytesSent = 0, messagesReceived = 0, bytesReceived = 0;  // MPI
   std::uint64_t rayMessages = 0, raysSent = 0;  // MPI messages carrying rays, and the rays in them
@@ -66,7 +66,7 @@ struct MpiRun {
 
 // Where the preprocessing time goes (3.2 steps 1-2, 3.7.1), in seconds.
 struct PreprocessingSeconds {
-  double sampling = 0;      // the sub-sampled rays (3.7.1), and alongside them the spatial queries pruning uses
+  double sampling = 0;  // the sub-sampled rays (3.7.1), and alongside them the spatial queries pruning uses
   double partitioning = 0;  // the grid, or the BSP of the sub-sampled load
   double pruning = 0;       // each region's database and light volumes (3.2 step 1, 3.7.2)
   double cells = 0;         // the processors building their structures, in the engine (3.2 step 2)

@@ -86,7 +86,9 @@ std::vector<core::Box> medianCover(const std::vector<core::Box>& boxes, std::siz
     std::uint32_t begin, end;
     MedianSplit split;
   };
-  auto partOf = [&](std::uint32_t begin, std::uint32_t end) { return Part{begin, end, splitAtMedian(items, begin, end)}; };
+  auto partOf = [&](std::uint32_t begin, std::uint32_t end) {
+    return Part{begin, end, splitAtMedian(items, begin, end)};
+  };
   std::vector<Part> frontier{partOf(0, std::uint32_t(items.size()))};
   const auto area = [&](std::size_t i) { return frontier[i].split.bounds.halfArea(); };
   for (;;) {
@@ -104,8 +106,8 @@ std::vector<core::Box> medianCover(const std::vector<core::Box>& boxes, std::siz
   return cover;
 }
 
-// Found indices are distinct: a light volume reaching most of the scene (the ground polygon's) is put in order
-// by marking them, in time linear in the objects; a few by sorting them.
+// Found indices are distinct: a light volume reaching most of the scene (the ground polygon's) is put in
+// order by marking them, in time linear in the objects; a few by sorting them.
 void BoxTree::sortAscending(std::vector<std::uint32_t>& found) const {
   if (found.size() < order_.size() / 16) {
     std::sort(found.begin(), found.end());

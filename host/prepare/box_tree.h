@@ -2,8 +2,8 @@
 // The host's spatial index for pruning (3.2 step 1, 3.7.2): a binary tree of boxes over the objects, so that
 // finding the objects a region or a light volume may hold costs about (objects found) x log(objects), not a
 // test of every object. The test must be monotone (a box that fails it holds no box that passes it), as
-// every test of node/eye_box.h and host/prepare/light_volume.h is: a subtree whose box fails is skipped whole.
-// What a query finds does not depend on the tree's shape, only how fast it finds it.
+// every test of node/eye_box.h and host/prepare/light_volume.h is: a subtree whose box fails is skipped
+// whole. What a query finds does not depend on the tree's shape, only how fast it finds it.
 #include <algorithm>
 #include <cstdint>
 #include <vector>

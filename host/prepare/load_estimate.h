@@ -16,12 +16,14 @@ namespace raycube::host {
 
 // A cost-metric weight (one plus a share of work) for the piece holding `fraction` of the ray's projected
 // length: the one whole, the share by length.
-inline double costOfPiece(double weight, double fraction) { return 1 + (weight - 1) * fraction; }
+inline double costOfPiece(double weight, double fraction) {
+  return 1 + (weight - 1) * fraction;
+}
 
 // A projected ray segment in continuous sample-boundary coordinates (x in [0, samplesX], y in [0, samplesY]).
 struct ScreenSegment {
   double x0, y0, x1, y1;
-  double weight;  // 1 (rays) or the ray's cost
+  double weight;    // 1 (rays) or the ray's cost
   double work = 0;  // the sub-sampled ray's traversal steps and intersection tests
 };
 

@@ -108,7 +108,9 @@ bool readsSceneInPlace(const MachineSettings& machine) {
 void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::vector<std::uint32_t>>& held,
                    const core::Scene& scene, const std::vector<node::EyeBox>& boxes, bool inPlace) {
   // The distinct sets in the order processors first name them, each copied once, on all cores.
-  auto bySet = [](const std::vector<std::uint32_t>* a, const std::vector<std::uint32_t>* b) { return *a < *b; };
+  auto bySet = [](const std::vector<std::uint32_t>* a, const std::vector<std::uint32_t>* b) {
+    return *a < *b;
+  };
   std::map<const std::vector<std::uint32_t>*, std::size_t, decltype(bySet)> distinct(bySet);
   std::vector<std::size_t> setOf(setups.size());
   std::vector<const std::vector<std::uint32_t>*> sets;
@@ -171,7 +173,6 @@ core::Box regionBoundsOf(const std::vector<std::uint32_t>& objects,
   return bounds;
 }
 
-
 // 3.2 step 1: each processor receives the objects that touch its region; objects reaching behind the eye
 // plane go to every processor (see EyeFrameRay: the rear space belongs to all). 3.7.2: with light cones or
 // pyramids, also the objects its light rays can meet.
@@ -206,11 +207,12 @@ PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& vie
     node::NodeSetup setup;
     setup.id = p;
     setup.cells = machine.emulate && machine.cells == node::CellStructure::Auto ? node::CellStructure::Paper
-                                                                               : machine.cells;
+                                                                                : machine.cells;
     setup.cellLevel = machine.cellLevel;
     setup.rearObjects = rear;
-    setup.objects =
-        inEyeFrame.query([&](const core::Box& b) { return node::mayTouch(node::EyeBox{b.lo, b.hi}, region); });
+    setup.objects = inEyeFrame.query([&](const core::Box& b) {
+      return node::mayTouch(node::EyeBox{b.lo, b.hi}, region);
+    });
     if (!regionBounds.empty())
       regionBounds[std::size_t(p)] = regionBoundsOf(setup.objects, worldBoxesForBounds);
     setup.lightRays = machine.lightRays;
@@ -220,7 +222,8 @@ PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& vie
     if (lightVolumes) {
       setup.lightSources = lightSourcesOf(region, setup.objects, boxes, view);
       for (const core::Light& light : scene.lights)
-        lightObjects.push_back(objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
+        lightObjects.push_back(
+            objectsInLightVolume(machine.lightRays, light.position, setup.lightSources, inWorld));
       setup.rearLightSources = rearSources;
       countLightObjects(lightObjects, setup);
       for (auto* lists : {&lightObjects, &rearLightObjects})

@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "core/view.h"
-#include "host/prepare/load_estimate.h"
 #include "host/machine/machine_settings.h"
+#include "host/prepare/load_estimate.h"
 #include "node/region_map.h"
 
 namespace raycube::host {

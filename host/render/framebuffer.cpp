@@ -8,11 +8,11 @@
 
 namespace raycube::host {
 
+using core::Color;
 using core::Contribution;
 using core::Image;
-using core::View;
-using core::Color;
 using core::Sampling;
+using core::View;
 namespace {
 
 // Each contribution is rounded on its own; out-of-range values saturate instead of overflowing.

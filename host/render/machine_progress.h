@@ -2,8 +2,8 @@
 // The machine's progress through its work. Rays are balanced between processors (3.7.1), but what a ray
 // costs is not: where one region's rays cost several times the mean, a count of rays finished reads
 // nearly done while that processor is far from its end. Each processor's part
-// of the work is therefore its own sub-sampled estimate (host/prepare/load_estimate.h, ExpectedWork), and how much
-// of that part is done is the share of its expected ray segments it has evaluated.
+// of the work is therefore its own sub-sampled estimate (host/prepare/load_estimate.h, ExpectedWork), and how
+// much of that part is done is the share of its expected ray segments it has evaluated.
 #include <cstdint>
 #include <vector>
 

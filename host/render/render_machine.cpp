@@ -11,19 +11,19 @@
 #include <thread>
 
 #include "core/intersect.h"
+#include "host/engines/make_engine.h"
 #include "host/prepare/box_tree.h"
-#include "host/render/framebuffer.h"
 #include "host/prepare/hypercube_mapping.h"
 #include "host/prepare/light_volume.h"
 #include "host/prepare/machine_checks.h"
 #include "host/prepare/pruning.h"
-#include "host/util/clock.h"
-#include "host/engines/make_engine.h"
-#include "host/render/machine_progress.h"
-#include "host/util/parallel_for.h"
-#include "host/render/precision_dispatch.h"
-#include "host/util/progress.h"
 #include "host/prepare/screen_partition.h"
+#include "host/render/framebuffer.h"
+#include "host/render/machine_progress.h"
+#include "host/render/precision_dispatch.h"
+#include "host/util/clock.h"
+#include "host/util/parallel_for.h"
+#include "host/util/progress.h"
 #include "node/scheduling.h"
 
 namespace raycube::host {
@@ -48,8 +48,9 @@ HypercubeEmbedding embedInHypercube(const node::RegionMap& regions, const Machin
       if (n > p) graph.edges.emplace_back(p, n);
   HypercubeEmbedding out;
   out.adjacencyEdges = graph.edges.size();
-  out.nodeOfProcessor = machine.balance == Balance::Uniform ? grayCodeGridMapping(machine.rows, machine.columns)
-                                                            : mapToHypercube(graph);
+  out.nodeOfProcessor = machine.balance == Balance::Uniform
+                            ? grayCodeGridMapping(machine.rows, machine.columns)
+                            : mapToHypercube(graph);
   out.dilation = dilationOf(graph, out.nodeOfProcessor);
   out.seconds = secondsSince(start);
   return out;

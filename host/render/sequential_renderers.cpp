@@ -12,16 +12,15 @@
 
 #include "core/brute_force.h"
 #include "core/bvh.h"
-#include "host/render/framebuffer.h"
 #include "core/ray_tree.h"
 #include "host/prepare/load_estimate.h"
+#include "host/render/framebuffer.h"
 #include "host/render/precision_dispatch.h"
-#include "host/util/progress.h"
 #include "host/util/clock.h"
+#include "host/util/progress.h"
 
 namespace raycube::host {
 namespace {
-
 
 // Progress that follows the work (rays finished against every ray the image will trace) needs the total:
 // estimated from one pixel's tree per 8x8 window (3.7.1's sub-sampling, about 1/64 of a trace), and only

@@ -106,13 +106,15 @@ void writeChromeTrace(const MachineReport& report, const std::filesystem::path& 
   bool first = true;
   for (const ProcessorReport& p : report.processors) {
     out << (first ? "" : ",\n")
-        << fmt::format(R"({{"name":"thread_name","ph":"M","pid":0,"tid":{},"args":{{"name":"processor {}"}}}})",
-                       p.node.id, p.node.id);
+        << fmt::format(
+               R"({{"name":"thread_name","ph":"M","pid":0,"tid":{},"args":{{"name":"processor {}"}}}})",
+               p.node.id, p.node.id);
     first = false;
   }
   for (const StateInterval& i : run.timeline)
-    out << fmt::format(",\n{{\"name\":\"{}\",\"ph\":\"X\",\"pid\":0,\"tid\":{},\"ts\":{:.3f},\"dur\":{:.3f}}}",
-                       stateName(i.state), i.processor, i.start * 1e6, (i.end - i.start) * 1e6);
+    out << fmt::format(
+        ",\n{{\"name\":\"{}\",\"ph\":\"X\",\"pid\":0,\"tid\":{},\"ts\":{:.3f},\"dur\":{:.3f}}}",
+        stateName(i.state), i.processor, i.start * 1e6, (i.end - i.start) * 1e6);
   out << "\n]}\n";
 }
 

@@ -91,14 +91,16 @@ std::string machineTable(const MachineReport& report) {
       byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused, held, leftScene);
   const LoadBalance balance = loadBalanceOf(report);
   const bool mapped = !report.hypercubeNode.empty();
-  text += fmt::format("  termination: {} token rounds, {} token passes; ", report.tokenRounds, report.tokenPasses);
+  text += fmt::format("  termination: {} token rounds, {} token passes; ", report.tokenRounds,
+                      report.tokenPasses);
   text += mapped ? fmt::format("hypercube of dimension {}: {} adjacencies, dilation mean {:.2f} max {}\n",
                                report.hypercubeDimension, report.adjacencyEdges, report.dilationMean,
                                report.dilationMax)
                  : std::string("hypercube not mapped (only the emulated machine, --emulate, needs it)\n");
   const PreprocessingSeconds& pre = report.preprocessing;
-  text += fmt::format("  preprocessing: sampling {:.3f} s, partitioning {:.3f} s, pruning {:.3f} s, cells {:.3f} s",
-                      pre.sampling, pre.partitioning, pre.pruning, pre.cells);
+  text += fmt::format(
+      "  preprocessing: sampling {:.3f} s, partitioning {:.3f} s, pruning {:.3f} s, cells {:.3f} s",
+      pre.sampling, pre.partitioning, pre.pruning, pre.cells);
   if (mapped)
     text += fmt::format("; hypercube mapping {:.3f} s{}", pre.mapping,
                         report.settings.emulate ? "" : " (during the synthesis)");
@@ -201,7 +203,8 @@ nlohmann::json hypercubeJson(const MachineReport& report) {
 nlohmann::json deadlockJson(const MachineReport& report) {
   if (!report.deadlock) return nullptr;
   nlohmann::json deadlock = {{"message", describe(*report.deadlock)}, {"cycle", nlohmann::json::array()}};
-  if (report.deadlock->simulatedSeconds >= 0) deadlock["simulatedSeconds"] = report.deadlock->simulatedSeconds;
+  if (report.deadlock->simulatedSeconds >= 0)
+    deadlock["simulatedSeconds"] = report.deadlock->simulatedSeconds;
   if (report.deadlock->wallSeconds >= 0) deadlock["wallSeconds"] = report.deadlock->wallSeconds;
   for (const LockedFifo& f : report.deadlock->cycle)
     deadlock["cycle"].push_back({{"from", f.from}, {"to", f.to}, {"face", int(f.face)}, {"rays", f.rays}});

@@ -87,7 +87,8 @@ std::string scalingTable(const std::vector<ScalingPoint>& points, const core::Sc
                         100 * p.blockedShare, p.rayMessages, p.wallSeconds);
     if (const auto published = kTable2Seconds.find(p.processors); paper && published != kTable2Seconds.end())
       text += fmt::format(" {:>9.0f} {:>11.2f} {:>11.2f}", published->second,
-                          kTable2Seconds.at(1) / published->second / p.processors, p.makespan / published->second);
+                          kTable2Seconds.at(1) / published->second / p.processors,
+                          p.makespan / published->second);
     text += '\n';
   }
   return text;

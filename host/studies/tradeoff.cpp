@@ -9,8 +9,8 @@
 #include <stdexcept>
 
 #include "host/render/render_machine.h"
-#include "host/report/machine_stats.h"
 #include "host/render/sequential_renderers.h"
+#include "host/report/machine_stats.h"
 
 namespace raycube::host {
 namespace {

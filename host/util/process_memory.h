@@ -1,6 +1,6 @@
 #pragma once
-// How the program's memory is laid out: glibc's heap, tuned once at startup (host/cli/main.cpp) for a run that
-// allocates large blocks and a few dozen threads.
+// How the program's memory is laid out: glibc's heap, tuned once at startup (host/cli/main.cpp) for a run
+// that allocates large blocks and a few dozen threads.
 #include <cstddef>
 #include <cstdint>
 

@@ -96,7 +96,8 @@ void Progress::setWork(std::uint64_t done, double expectedWork) {
   {
     std::lock_guard lock(line_->mutex_);
     line_->expected_.store(expectedWork, std::memory_order_relaxed);
-    line_->done_.store(std::max(done, line_->done_.load(std::memory_order_relaxed)), std::memory_order_relaxed);
+    line_->done_.store(std::max(done, line_->done_.load(std::memory_order_relaxed)),
+                       std::memory_order_relaxed);
   }
   line_->notify();
 }
@@ -106,7 +107,9 @@ void Progress::complete() {
   line_->notify();
 }
 
-void Progress::listen(Listener listener) { line_->listener_ = std::move(listener); }
+void Progress::listen(Listener listener) {
+  line_->listener_ = std::move(listener);
+}
 
 void Progress::notify() {
   if (listener_) listener_(snapshot());
@@ -142,7 +145,8 @@ double Progress::remainingSeconds(double phaseSeconds, double fraction) const {
   while (recent_.size() > 2 && phaseSeconds - recent_[1].first >= kRateWindowSeconds) recent_.pop_front();
   if (fraction < kMinFractionToExtrapolate || phaseSeconds <= 0) return -1;
   auto [since, from] = recent_.front();
-  if (phaseSeconds - since < kRateSampleEverySeconds) since = from = 0;  // too short a window: the whole phase
+  if (phaseSeconds - since < kRateSampleEverySeconds)
+    since = from = 0;  // too short a window: the whole phase
   const double recentRate = (fraction - from) / (phaseSeconds - since), meanRate = fraction / phaseSeconds;
   // Work nearly stopped lately (one processor left with an expensive corner): no honest estimate.
   if (recentRate < kStalledRateShare * meanRate) return -1;

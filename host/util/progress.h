@@ -85,7 +85,7 @@ class Progress {
   std::atomic<bool> complete_{false};
   mutable double shown_ = 0;  // the highest fraction a snapshot of this phase gave (under mutex_)
   mutable std::deque<std::pair<double, double>> recent_;  // (phase seconds, fraction): the recent rate
-  Listener listener_;         // set before the work starts
+  Listener listener_;                                     // set before the work starts
   std::condition_variable stop_;
   bool stopping_ = false;
   bool printed_ = false;

@@ -159,7 +159,8 @@ MpiInterconnect<Real>::MpiInterconnect(const node::RegionMap& regions, MpiWiring
     : regions_(regions),
       wiring_(std::move(wiring)),
       link_(link),
-      creditBatch_(std::clamp<std::size_t>(wiring_.capacity / 2, 1, std::max<std::size_t>(1, wiring_.rayBatch))),
+      creditBatch_(
+          std::clamp<std::size_t>(wiring_.capacity / 2, 1, std::max<std::size_t>(1, wiring_.rayBatch))),
       bells_(std::size_t(regions.processors())),
       tokenSlots_(std::size_t(regions.processors())),
       outgoing_(std::size_t(regions.processors())),
@@ -170,11 +171,13 @@ MpiInterconnect<Real>::MpiInterconnect(const node::RegionMap& regions, MpiWiring
       scratch_(wiring_.rayBatch),
       creditPackets_(std::size_t(link.size())),
       localIds_(processorsOfRank(wiring_.rankOf, link.rank())),
-      contributions_(localIds_.size(), node::scheduling::contributionBlocksPerProcessor(localIds_.size()), [&] {
-        std::vector<Doorbell*> bells;
-        for (int p : localIds_) bells.push_back((bells_[p] = std::make_unique<Doorbell>()).get());
-        return bells;
-      }()) {
+      contributions_(localIds_.size(), node::scheduling::contributionBlocksPerProcessor(localIds_.size()),
+                     [&] {
+                       std::vector<Doorbell*> bells;
+                       for (int p : localIds_)
+                         bells.push_back((bells_[p] = std::make_unique<Doorbell>()).get());
+                       return bells;
+                     }()) {
   if (int(wiring_.rankOf.size()) != regions.processors())
     throw std::invalid_argument("MpiInterconnect: a rank for every processor");
   std::map<std::pair<int, int>, RayQueue*> localFifo;
@@ -197,12 +200,13 @@ MpiInterconnect<Real>::MpiInterconnect(const node::RegionMap& regions, MpiWiring
       }
       const int rank = wiring_.rankOf[n];
       remoteOut_.push_back(std::make_unique<RemoteOut>(
-          p, n, rank, SpscOptions{.capacity = wiring_.capacity, .producerBell = bells_[p].get()}, wiring_.capacity));
+          p, n, rank, SpscOptions{.capacity = wiring_.capacity, .producerBell = bells_[p].get()},
+          wiring_.capacity));
       remoteOutByEdge_[{p, n}] = remoteOut_.back().get();
       outgoing_[p].push_back(&remoteOut_.back()->queue);
       credits_[p].push_back(&remoteOut_.back()->credits);
-      auto in = std::make_unique<RemoteIn>(n, p, rank,
-                                           SpscOptions{.capacity = wiring_.capacity, .consumerBell = bells_[p].get()});
+      auto in = std::make_unique<RemoteIn>(
+          n, p, rank, SpscOptions{.capacity = wiring_.capacity, .consumerBell = bells_[p].get()});
       incoming_[p].push_back(&in->queue);
       remoteIn_[{n, p}] = std::move(in);
     }
@@ -243,7 +247,8 @@ void MpiInterconnect<Real>::terminateHere() {
 }
 
 template <class Real>
-void MpiInterconnect<Real>::onPacket(int from, Packet kind, std::span<const char> bytes, const ServeHooks& hooks) {
+void MpiInterconnect<Real>::onPacket(int from, Packet kind, std::span<const char> bytes,
+                                     const ServeHooks& hooks) {
   switch (kind) {
     case Packet::Rays: {
       RemoteIn* in = nullptr;  // a batch's rays mostly share their edge: look it up when it changes
@@ -310,7 +315,8 @@ bool MpiInterconnect<Real>::returnCredits(bool flushAll) {
     const bool quiet = consumed == in->lastConsumed;
     in->lastConsumed = consumed;
     if (pending == 0 || !(flushAll || quiet || pending >= creditBatch_)) continue;
-    append(packets[in->rank], WireCredit{std::uint16_t(in->from), std::uint16_t(in->to), std::uint32_t(pending)});
+    append(packets[in->rank],
+           WireCredit{std::uint16_t(in->from), std::uint16_t(in->to), std::uint32_t(pending)});
     in->returned = consumed;
   }
   for (std::size_t rank = 0; rank < packets.size(); ++rank) {
@@ -333,7 +339,8 @@ bool MpiInterconnect<Real>::forwardToken() {
 // Contribution blocks of the local processors, to the host in packets of up to kContributionsPerShipment.
 template <class Real>
 bool MpiInterconnect<Real>::forwardContributions(bool flush) {
-  const std::size_t n = contributions_.drain([&](const core::Contribution& c) { contributionBlock_.push_back(c); });
+  const std::size_t n =
+      contributions_.drain([&](const core::Contribution& c) { contributionBlock_.push_back(c); });
   if (!contributionBlock_.empty() &&
       (flush || n == 0 || contributionBlock_.size() >= kContributionsPerShipment)) {
     const char* p = reinterpret_cast<const char*>(contributionBlock_.data());
@@ -380,7 +387,8 @@ void MpiInterconnect<Real>::serve(const ServeHooks& hooks) {
       lastWork = Clock::now();
       continue;
     }
-    if (!described && Clock::now() - lastWork > std::chrono::seconds(10) && std::getenv("RAYCUBE_MPI_DEBUG")) {
+    if (!described && Clock::now() - lastWork > std::chrono::seconds(10) &&
+        std::getenv("RAYCUBE_MPI_DEBUG")) {
       std::fprintf(stderr, "%s\n", describe().c_str());
       described = true;
     }
@@ -428,7 +436,8 @@ std::string MpiInterconnect<Real>::describe() const {
             std::to_string(in->pushed) + " waiting " + std::to_string(in->queue.size()) + " returned " +
             std::to_string(in->returned) + ";";
   for (int r = 0; r < link_.size(); ++r)
-    if (batchRays_[r] > 0) text += " batch for rank " + std::to_string(r) + ": " + std::to_string(batchRays_[r]) + ";";
+    if (batchRays_[r] > 0)
+      text += " batch for rank " + std::to_string(r) + ": " + std::to_string(batchRays_[r]) + ";";
   return text;
 }
 

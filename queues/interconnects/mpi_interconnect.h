@@ -63,10 +63,10 @@ class MpiInterconnect {
   QueueStats outgoingStats(int processor, node::Face face) const;
 
   struct ServeHooks {
-    std::function<bool()> stopped;            // every processor of this rank has returned
+    std::function<bool()> stopped;                             // every processor of this rank has returned
     std::function<std::vector<ProcessorProgress>()> progress;  // this rank's processors, for the host
-    MpiLink::OnPacket other;                  // packets that are not the interconnect's (Start, Quit)
-    std::function<void()> check;              // every pass: throws if a processor's thread has failed
+    MpiLink::OnPacket other;      // packets that are not the interconnect's (Start, Quit)
+    std::function<void()> check;  // every pass: throws if a processor's thread has failed
   };
   // The communication task, on the calling thread: runs until termination is known here and every local
   // processor has stopped, then ships the last contributions. The host (rank 0) must follow with
@@ -120,8 +120,8 @@ class MpiInterconnect {
   MpiWiring wiring_;
   MpiLink& link_;
   std::size_t creditBatch_;
-  std::vector<std::unique_ptr<Doorbell>> bells_;      // per processor (null for other ranks')
-  std::vector<std::unique_ptr<TokenSlot>> tokenSlots_;   // per processor (null for other ranks')
+  std::vector<std::unique_ptr<Doorbell>> bells_;        // per processor (null for other ranks')
+  std::vector<std::unique_ptr<TokenSlot>> tokenSlots_;  // per processor (null for other ranks')
   // Per local processor and neighbour slot: its FIFO towards the neighbour, and its credits when the
   // neighbour is on another rank (null otherwise).
   std::vector<std::vector<RayQueue*>> outgoing_;
@@ -133,7 +133,7 @@ class MpiInterconnect {
   std::map<std::pair<int, int>, RemoteOut*> remoteOutByEdge_;
   std::vector<std::vector<char>> batches_;  // per rank: rays waiting for an MPI message
   std::vector<int> batchRays_;
-  std::vector<Message> scratch_;                   // rays on their way from a FIFO into a batch
+  std::vector<Message> scratch_;                  // rays on their way from a FIFO into a batch
   std::vector<std::vector<char>> creditPackets_;  // per rank: credits waiting for an MPI message
   std::atomic<bool> terminated_{false};
   std::atomic<bool> announced_{false};

@@ -12,7 +12,9 @@ namespace {
 
 // The tag: the packet's kind and its render's number (modulo a bound every MPI offers: 32767).
 constexpr std::uint32_t kJobsInTags = 32767 / kPacketKinds;
-int tagOf(Packet kind, std::uint32_t job) { return int(kind) + kPacketKinds * int(job % kJobsInTags); }
+int tagOf(Packet kind, std::uint32_t job) {
+  return int(kind) + kPacketKinds * int(job % kJobsInTags);
+}
 
 }  // namespace
 
@@ -29,7 +31,8 @@ MpiLink::MpiLink() {
 MpiLink::~MpiLink() = default;
 
 void MpiLink::post(int to, Packet kind, std::vector<char> bytes) {
-  if (bytes.size() > std::size_t(INT32_MAX)) throw std::runtime_error("a packet over 2 GB cannot travel between ranks");
+  if (bytes.size() > std::size_t(INT32_MAX))
+    throw std::runtime_error("a packet over 2 GB cannot travel between ranks");
   ++traffic_.messagesSent;
   traffic_.bytesSent += bytes.size();
   pending_.push_back(Pending{MPI_REQUEST_NULL, std::move(bytes)});

@@ -6,22 +6,22 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
-#include <span>
 #include <vector>
 
 namespace raycube::queues {
 
 enum class Packet : std::uint8_t {
-  Job,            // host -> rank: settings, context and setups of its processors (host/engines/machine_wire.h)
-  Ready,          // rank -> host: its processors have subdivided their regions
-  Start,          // host -> rank: the synthesis phase begins
-  Rays,           // rank -> rank: a batch of rays, each for one directed edge between processors
-  Credits,        // rank -> rank: room freed in FIFOs, per directed edge
-  Token,          // rank -> rank: Safra's token for a processor
-  Terminate,      // rank -> rank: processor 0 has proved termination
+  Job,        // host -> rank: settings, context and setups of its processors (host/engines/machine_wire.h)
+  Ready,      // rank -> host: its processors have subdivided their regions
+  Start,      // host -> rank: the synthesis phase begins
+  Rays,       // rank -> rank: a batch of rays, each for one directed edge between processors
+  Credits,    // rank -> rank: room freed in FIFOs, per directed edge
+  Token,      // rank -> rank: Safra's token for a processor
+  Terminate,  // rank -> rank: processor 0 has proved termination
   Contributions,  // rank -> host: a block of contributions
   Progress,       // rank -> host: ray segments evaluated so far by each of its processors
   Results,        // rank -> host: its reports, once its processors have stopped

@@ -1,7 +1,7 @@
-// The machine over MPI (host/engines/mpi/mpi_machine.h) renders exactly what the reference renders, bit for bit, on
-// 2, 3 or 5 ranks (ctest runs this program under mpiexec at each): every ray spawned finishes once, every
-// contribution reaches rank 0, no eye ray leaves its processor, termination is proved by the token across
-// ranks, and a processor never has more rays in flight towards a neighbour than the FIFO's capacity.
+// The machine over MPI (host/engines/mpi/mpi_machine.h) renders exactly what the reference renders, bit for
+// bit, on 2, 3 or 5 ranks (ctest runs this program under mpiexec at each): every ray spawned finishes once,
+// every contribution reaches rank 0, no eye ray leaves its processor, termination is proved by the token
+// across ranks, and a processor never has more rays in flight towards a neighbour than the FIFO's capacity.
 // Rank 0 runs the tests; the other ranks serve the renders it sends, one after another.
 #include <gtest/gtest.h>
 
@@ -49,7 +49,9 @@ std::vector<Case> casesFor(int ranks) {
   return cases;
 }
 
-int worldSize() { return hostMpiLink()->size(); }
+int worldSize() {
+  return hostMpiLink()->size();
+}
 
 // 3.1's grid on the ranks; the reference in the same precision.
 TEST(MpiMachineTest, MatchesReferenceOnEveryGridAndCapacity) {
@@ -77,7 +79,8 @@ TEST(MpiMachineTest, MatchesReferenceOnEveryGridAndCapacity) {
       processors += r.processors;
       raysOverMpi += r.raysSent;
       EXPECT_LE(r.rayMessages, r.raysSent) << label << ": rank " << r.rank;
-      EXPECT_GE(r.rayMessages * run.rayBatch, r.raysSent) << label << ": rank " << r.rank << ": batches too big";
+      EXPECT_GE(r.rayMessages * run.rayBatch, r.raysSent)
+          << label << ": rank " << r.rank << ": batches too big";
     }
     EXPECT_EQ(processors, c.rows * c.columns) << label;
     EXPECT_EQ(run.ranks.front().processors, 0) << label << ": the host runs no processor";
@@ -108,7 +111,8 @@ TEST(MpiMachineTest, BspPartitionMatchesReference) {
   machine.columns = 3;
   machine.queueCapacity = 4;
   machine.mpi = true;
-  renderAndCompare(scene, reference, settings, machine, "bsp of 9 on " + std::to_string(worldSize()) + " ranks");
+  renderAndCompare(scene, reference, settings, machine,
+                   "bsp of 9 on " + std::to_string(worldSize()) + " ranks");
 }
 
 }  // namespace

@@ -40,7 +40,8 @@ class HostInbox {
         ++ready_;
         break;
       case Packet::Contributions:
-        queues::forEachEntry<core::Contribution>(bytes, [&](const core::Contribution& c) { hooks_.host->add(c); });
+        queues::forEachEntry<core::Contribution>(bytes,
+                                                 [&](const core::Contribution& c) { hooks_.host->add(c); });
         break;
       case Packet::Progress:
         queues::forEachEntry<queues::ProcessorProgress>(bytes, [&](const queues::ProcessorProgress& p) {

@@ -43,7 +43,8 @@ int serveAsNodes(queues::MpiLink& link) {
     const int status = serveMachineJobs(link);
     if (status != 0)
       std::cerr << "raycube: rank " + std::to_string(link.rank()) +
-                       ": stopping: the host (rank 0) failed with exit status " + std::to_string(status) + "\n";
+                       ": stopping: the host (rank 0) failed with exit status " + std::to_string(status) +
+                       "\n";
     return status;
   } catch (const std::exception& e) {
     link.abort(e.what());
@@ -52,7 +53,9 @@ int serveAsNodes(queues::MpiLink& link) {
 
 }  // namespace
 
-queues::MpiLink* hostMpiLink() { return gHostLink; }
+queues::MpiLink* hostMpiLink() {
+  return gHostLink;
+}
 
 int runUnderMpi(int argc, char** argv, const std::function<int()>& hostMain) {
   if (!startedByLauncher()) {

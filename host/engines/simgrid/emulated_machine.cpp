@@ -265,7 +265,8 @@ EmulatedRun emulatedRunOf(const SimulationInput& in, const queues::SimGridInterc
   for (std::size_t p = 0; p < in.cubeNode.size(); ++p) processorAt[in.cubeNode[p]] = int(p);
   for (const queues::RelayInterval& r : net.relayIntervals())
     if (processorAt[r.cubeNode] >= 0)
-      run.timeline.push_back({r.start, r.end, std::uint32_t(processorAt[r.cubeNode]), ProcessorState::Forwarding});
+      run.timeline.push_back(
+          {r.start, r.end, std::uint32_t(processorAt[r.cubeNode]), ProcessorState::Forwarding});
   return run;
 }
 
