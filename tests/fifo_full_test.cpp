@@ -13,44 +13,17 @@
 namespace raycube::host {
 namespace {
 
+using testing_support::deadlockOf;
+using testing_support::expectValidCycle;
+using testing_support::locking;
 using testing_support::renderMachineWatched;
 using testing_support::settingsFor;
 using testing_support::uniformGrid;
-
-MachineSettings locking(MachineSettings m) {
-  m.fifoFull = node::FifoFull::Lock;
-  return m;
-}
 
 MachineSettings emulatedLocking(int rows, int columns, std::size_t capacity, node::LightRayMode lights) {
   MachineSettings m = locking(uniformGrid(rows, columns, capacity, lights));
   m.emulate = builtinPlatform("ipsc1");
   return m;
-}
-
-// A deadlock as reported: a cycle of neighbours, each FIFO towards the next full.
-void expectValidCycle(const Deadlock& d, const MachineReport& report, std::size_t capacity) {
-  ASSERT_GE(d.cycle.size(), 2u);
-  for (std::size_t k = 0; k < d.cycle.size(); ++k) {
-    const LockedFifo& f = d.cycle[k];
-    EXPECT_EQ(f.to, d.cycle[(k + 1) % d.cycle.size()].from) << "not a cycle";
-    EXPECT_EQ(f.rays, capacity) << f.from << " -> " << f.to << ": a FIFO of the cycle is not full";
-    EXPECT_GE(report.processors.at(std::size_t(f.from)).node.locks, 1u) << f.from << " never locked";
-  }
-  EXPECT_NE(describe(d).find("deadlock"), std::string::npos);
-}
-
-// What a deadlocking run throws, with the report it filled (the --stats counts up to the deadlock).
-std::optional<Deadlock> deadlockOf(const core::Scene& scene, const RenderSettings& settings,
-                                   const MachineSettings& m, MachineReport& report,
-                                   const std::string& label) {
-  try {
-    renderMachineWatched(scene, settings, m, report, label);
-  } catch (const MachineDeadlocked&) {
-    EXPECT_TRUE(report.deadlock.has_value()) << label;
-    return report.deadlock;
-  }
-  return std::nullopt;
 }
 
 TEST(FifoFull, LockingRunsThatCompleteGiveTheReferenceImageAtAnyProcessorsAndCapacity) {
@@ -141,20 +114,6 @@ TEST(FifoFull, ThreadsDeadlockIsDetectedAndStopsTheMachine) {
     EXPECT_GT(d->wallSeconds, 0);
   }
   EXPECT_EQ(deadlocks, 1) << "three runs at capacity 1 all completed: no deadlock was constructed";
-}
-
-// MPI ranks do not lock yet: asking is an error that says what to use, before anything runs.
-TEST(FifoFull, LockingOverMpiIsRefusedWithAMessage) {
-  const core::Scene scene = core::makeBalls(1);
-  const core::View view(scene.camera, 32, 32, core::Sampling::Centers);
-  MachineSettings m = locking(uniformGrid(2, 2, 128));
-  m.mpi = true;
-  try {
-    requireMachineFits(m, view);
-    ADD_FAILURE() << "accepted --fifo-full lock over MPI";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("--fifo-full overflow"), std::string::npos) << e.what();
-  }
 }
 
 TEST(FifoFull, LockCycleFindsTheCycleAndNothingElse) {

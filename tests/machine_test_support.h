@@ -4,9 +4,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "core/image.h"
+#include "host/machine/deadlock.h"
 #include "host/render/render_machine.h"
 #include "test_support.h"
 
@@ -125,6 +127,38 @@ inline void renderAndCompare(const core::Scene& scene, const RenderResult& refer
   MachineReport report;
   const RenderResult result = renderMachineWatched(scene, settings, machine, report, label);
   expectMachineMatchesReference(reference, result, report, label);
+}
+
+// --- The paper's flow control (--fifo-full lock, 3.5.2) and its deadlocks (host/machine/deadlock.h).
+
+inline MachineSettings locking(MachineSettings m) {
+  m.fifoFull = node::FifoFull::Lock;
+  return m;
+}
+
+// A deadlock as reported: a cycle of neighbours, each FIFO towards the next full.
+inline void expectValidCycle(const Deadlock& d, const MachineReport& report, std::size_t capacity) {
+  ASSERT_GE(d.cycle.size(), 2u);
+  for (std::size_t k = 0; k < d.cycle.size(); ++k) {
+    const LockedFifo& f = d.cycle[k];
+    EXPECT_EQ(f.to, d.cycle[(k + 1) % d.cycle.size()].from) << "not a cycle";
+    EXPECT_EQ(f.rays, capacity) << f.from << " -> " << f.to << ": a FIFO of the cycle is not full";
+    EXPECT_GE(report.processors.at(std::size_t(f.from)).node.locks, 1u) << f.from << " never locked";
+  }
+  EXPECT_NE(describe(d).find("deadlock"), std::string::npos);
+}
+
+// What a deadlocking run throws, with the report it filled (the --stats counts up to the deadlock).
+inline std::optional<Deadlock> deadlockOf(const core::Scene& scene, const RenderSettings& settings,
+                                          const MachineSettings& m, MachineReport& report,
+                                          const std::string& label) {
+  try {
+    renderMachineWatched(scene, settings, m, report, label);
+  } catch (const MachineDeadlocked&) {
+    EXPECT_TRUE(report.deadlock.has_value()) << label;
+    return report.deadlock;
+  }
+  return std::nullopt;
 }
 
 }  // namespace raycube::host::testing_support

@@ -95,6 +95,7 @@ void writeContext(WireWriter& out, const node::MachineContext& context) {
   out.value(context.regions.gridColumns());
   out.vector(context.sceneBounds);
   out.vector(context.regionBounds);
+  out.value(context.fifoFull);
 }
 
 node::MachineContext readContext(WireReader& in) {
@@ -104,9 +105,13 @@ node::MachineContext readContext(WireReader& in) {
   const int gridColumns = in.value<int>();
   auto sceneBounds = in.vector<core::Box>();
   auto regionBounds = in.vector<core::Box>();
-  return node::MachineContext{view, shading,
+  const auto fifoFull = in.value<node::FifoFull>();
+  return node::MachineContext{view,
+                              shading,
                               node::RegionMap(std::move(areas), node::ScreenLines(view), gridColumns),
-                              std::move(sceneBounds), std::move(regionBounds)};
+                              std::move(sceneBounds),
+                              std::move(regionBounds),
+                              fifoFull};
 }
 
 // ---- A processor's setup (3.2 step 2, 3.7.2).

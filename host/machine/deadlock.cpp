@@ -33,6 +33,20 @@ std::vector<int> lockCycle(const std::vector<int>& lockedOn) {
   return {};
 }
 
+std::vector<int> DeadlockProof::look(const std::vector<int>& lockedOn,
+                                     const std::vector<std::uint64_t>& stepsWorked, Clock::time_point now) {
+  std::vector<int> cycle = lockCycle(lockedOn);
+  std::vector<std::uint64_t> worked;
+  for (int p : cycle) worked.push_back(stepsWorked.at(std::size_t(p)));
+  if (cycle.empty() || cycle != candidate_ || worked != candidateWorked_) {  // new, or it moved: start over
+    candidate_ = std::move(cycle);
+    candidateWorked_ = std::move(worked);
+    since_ = now;
+    return {};
+  }
+  return now - since_ >= quiet_ ? candidate_ : std::vector<int>{};
+}
+
 std::string describe(const Deadlock& deadlock) {
   std::string path, fifos;
   for (const LockedFifo& f : deadlock.cycle) {

@@ -89,6 +89,22 @@ EmulatedPlatform builtinPlatform(std::string_view name) {
                   fmt::join(places, ", ")));
 }
 
+namespace {
+
+// A word of a cost file that names one of a few choices.
+template <class Choice>
+Choice choiceOf(const std::string& where, const std::string& key, const std::string& value,
+                std::initializer_list<std::pair<const char*, Choice>> choices) {
+  std::string names;
+  for (const auto& [name, choice] : choices) {
+    if (value == name) return choice;
+    names += fmt::format("{}{}", names.empty() ? "" : " or ", name);
+  }
+  throw std::runtime_error(fmt::format("{}: {} is {}, not '{}'", where, key, names, value));
+}
+
+}  // namespace
+
 void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platform) {
   std::ifstream in(costs);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot read the cost table", costs.string()));
@@ -102,10 +118,13 @@ void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platfor
     const std::string where = fmt::format("{}:{}", costs.string(), number);
     if (!(words >> value)) throw std::runtime_error(fmt::format("{}: '{}' needs a value", where, key));
     if (key == "routing") {
-      if (value != "store-and-forward" && value != "direct")
-        throw std::runtime_error(
-            fmt::format("{}: routing is store-and-forward or direct, not '{}'", where, value));
-      platform.routing = value == "direct" ? Routing::Direct : Routing::StoreAndForward;
+      platform.routing = choiceOf<Routing>(
+          where, key, value, {{"store-and-forward", Routing::StoreAndForward}, {"direct", Routing::Direct}});
+      continue;
+    }
+    if (key == "fifoFull") {
+      platform.fifoFull = choiceOf<node::FifoFull>(
+          where, key, value, {{"lock", node::FifoFull::Lock}, {"overflow", node::FifoFull::Overflow}});
       continue;
     }
     double number_ = 0;

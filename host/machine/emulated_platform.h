@@ -48,6 +48,9 @@ struct EmulatedPlatform {
   std::string name;
   std::filesystem::path platformFile;  // the SimGrid platform
   Routing routing = Routing::StoreAndForward;
+  // What a send into a full FIFO does on this machine unless --fifo-full says otherwise: the iPSC/1's
+  // synthesis task locked (3.5.2), a modern cluster's may overflow into memory.
+  node::FifoFull fifoFull = node::FifoFull::Overflow;
   std::optional<double> nodeSpeed;  // a cost table's nodeSpeed (flop-equivalents/s): replaces the platform's
   CostTable costs;
 };
@@ -61,8 +64,8 @@ std::vector<std::filesystem::path> platformDirectories();
 // looked at when the files are missing.
 EmulatedPlatform builtinPlatform(std::string_view name);
 // --platform FILE.xml [--costs FILE]: a SimGrid platform and a cost table of "name value" lines (any
-// CostTable field, plus nodeSpeed and routing store-and-forward|direct). Errors name file:line. The
-// built-in platforms come this way too.
+// CostTable field, plus nodeSpeed, routing store-and-forward|direct and fifoFull lock|overflow). Errors name
+// file:line. The built-in platforms come this way too.
 EmulatedPlatform userPlatform(const std::filesystem::path& platformFile, const std::filesystem::path& costs);
 void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platform);
 

@@ -83,10 +83,11 @@ inline std::size_t fifoRaysFor(const MachineSettings& machine) {
   return machine.emulate || machine.mpi ? queues::kPaperFifoCapacity : node::scheduling::kThreadsFifoRays;
 }
 
-// The flow control of a run: the one asked for, or the engine's own: an overflow list everywhere, so that a
-// run never deadlocks unless asked to lock as the paper's machine did.
+// The flow control of a run: the one asked for, or the emulated machine's own (the iPSC/1 locks, 3.5.2), or
+// an overflow list on threads and MPI, so that a run there never deadlocks unless asked to lock.
 inline node::FifoFull fifoFullFor(const MachineSettings& machine) {
-  return machine.fifoFull.value_or(node::FifoFull::Overflow);
+  if (machine.fifoFull) return *machine.fifoFull;
+  return machine.emulate ? machine.emulate->fifoFull : node::FifoFull::Overflow;
 }
 
 }  // namespace raycube::host

@@ -40,10 +40,6 @@ void requireMachineFits(const MachineSettings& machine, const core::View& view) 
                     machine.rows, machine.columns, kMaxMappedVertices, processors));
   if (machine.queueCapacity && *machine.queueCapacity < 1)
     throw std::invalid_argument("--queue-capacity must be at least 1");
-  if (machine.mpi && fifoFullFor(machine) == node::FifoFull::Lock)
-    throw std::invalid_argument(
-        "--fifo-full lock runs on threads and on the emulated machine (--emulate, --platform), not yet over "
-        "--transport mpi: use --fifo-full overflow there");
   if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
 }
 

@@ -43,12 +43,6 @@ constexpr auto kShortestNap = std::chrono::microseconds(20);
 constexpr int kYieldsIdle = 16, kYieldsInFlight = 256;
 constexpr auto kProgressPeriod = std::chrono::milliseconds(100);
 
-bool sameProgress(const std::vector<ProcessorProgress>& a, const std::vector<ProcessorProgress>& b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const auto& x, const auto& y) {
-    return x.processor == y.processor && x.segmentsEvaluated == y.segmentsEvaluated;
-  });
-}
-
 }  // namespace
 
 template <class Real>
@@ -403,7 +397,7 @@ void MpiInterconnect<Real>::reportProgress(const ServeHooks& hooks, Clock::time_
                                            std::vector<ProcessorProgress>& reported) {
   if (Clock::now() < next) return;
   next = Clock::now() + kProgressPeriod;
-  if (std::vector<ProcessorProgress> now = hooks.progress(); !sameProgress(now, reported)) {
+  if (std::vector<ProcessorProgress> now = hooks.progress(); now != reported) {
     const char* bytes = reinterpret_cast<const char*>(now.data());
     link_.post(0, Packet::Progress, std::vector<char>(bytes, bytes + now.size() * sizeof now[0]));
     reported = std::move(now);
@@ -439,6 +433,14 @@ std::string MpiInterconnect<Real>::describe() const {
     if (batchRays_[r] > 0)
       text += " batch for rank " + std::to_string(r) + ": " + std::to_string(batchRays_[r]) + ";";
   return text;
+}
+
+template <class Real>
+std::size_t MpiInterconnect<Real>::raysToward(int from, int to) const {
+  const std::size_t slot = regions_.neighbourSlot(from, to);
+  if (const auto* credits = credits_[from][slot])
+    return std::size_t(std::max<std::int64_t>(0, std::int64_t(wiring_.capacity) - credits->load()));
+  return outgoing_[from][slot]->size();
 }
 
 template <class Real>

@@ -61,6 +61,10 @@ class MpiInterconnect {
   void ringNeighbours(int) {}  // its FIFOs ring as they are pushed
   bool terminated() const { return terminated_.load(std::memory_order_acquire); }
   QueueStats outgoingStats(int processor, node::Face face) const;
+  // Rays a local processor has sent towards its neighbour `to` and the neighbour has not taken: in its FIFO
+  // (a neighbour on this rank) or anywhere on the way (another rank's: the credits it lacks). The paper's
+  // flow control locks the sender when this reaches the capacity.
+  std::size_t raysToward(int from, int to) const;
 
   struct ServeHooks {
     std::function<bool()> stopped;                             // every processor of this rank has returned

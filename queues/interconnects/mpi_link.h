@@ -77,10 +77,16 @@ class MpiLink {
   MpiTraffic traffic_;
 };
 
-// One processor's progress, as a Progress packet carries it (an array of these).
+// One processor's progress, as a Progress packet carries it (an array of these). Under the paper's flow
+// control (node::FifoFull::Lock) also what the host needs to prove a deadlock: whom the processor is locked
+// on, the rays in that FIFO (or in flight towards that neighbour), and its steps that did something.
 struct ProcessorProgress {
   std::uint32_t processor = 0;
+  std::int32_t lockedOn = -1;  // a processor, or -1
   std::uint64_t segmentsEvaluated = 0;
+  std::uint64_t stepsWorked = 0;
+  std::uint64_t lockedRays = 0;
+  bool operator==(const ProcessorProgress&) const = default;
 };
 
 // Calls each(entry) for every T of a packet's body (an array of T as bytes).

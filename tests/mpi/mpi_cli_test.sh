@@ -2,7 +2,7 @@
 # The command line over MPI, and its bad situations (issue 14): raycube render --transport mpi under
 # mpiexec renders the reference's image bit for bit; outside mpiexec, or with one rank, it says so at once;
 # a scene that fails to load, or a rank killed mid-render, ends every rank non-zero within seconds, with a
-# message naming the rank and the cause.
+# message naming the rank and the cause; a deadlock of the paper's flow control is the run's result (exit 4).
 # Usage: mpi_cli_test.sh RAYCUBE MPIEXEC SCRATCH_DIR
 set -uo pipefail
 raycube=$1 mpiexec=$2 dir=$3
@@ -66,6 +66,28 @@ else
   expect_in "signal 9" killed.log "killed rank"
   if pgrep -f "RAYCUBE_TEST_TAG=$tag" >/dev/null; then fail "processes of the killed job remain"; fi
 fi
+
+# 5. The paper's flow control over MPI (--fifo-full lock, 3.5.2): FIFOs of one ray, light rays as messages,
+# 16 processors on 2 worker ranks deadlock; the host proves it from the ranks' reports, says which cycle,
+# records it in --stats and every rank ends with the run's status 4 within seconds. Timing may let a run
+# through: three tries, one deadlock wanted.
+deadlocked=0
+for try in 1 2 3; do
+  timeout 60 "$mpiexec" -n 3 "$raycube" render --balls 2 --size 64x64 --procs 4x4 --balance uniform \
+    --queue-capacity 1 --light-rays messages --fifo-full lock --transport mpi -q -o lock.png --stats lock.json \
+    >lock.log 2>&1
+  status=$?
+  [ $status -ne 124 ] || { fail "lock: the job hung until the timeout"; break; }
+  if [ $status -eq 4 ]; then
+    deadlocked=1
+    expect_in "each locked on a full FIFO of the next" lock.log "lock deadlock message"
+    expect_in "rank 1: stopping" lock.log "lock deadlock, rank 1"
+    expect_in '"deadlock"' lock.json "lock deadlock in --stats"
+    break
+  fi
+  [ $status -eq 0 ] || { fail "lock: exit status $status"; cat lock.log; break; }
+done
+[ $deadlocked -eq 1 ] || fail "lock: three runs at capacity 1 all completed: no deadlock was constructed"
 
 [ $failures -eq 0 ] && echo "mpi_cli_test: all checks passed"
 exit $((failures > 0))

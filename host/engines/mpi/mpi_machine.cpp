@@ -8,6 +8,9 @@
 #include <thread>
 
 #include "host/engines/machine_wire.h"
+#include "host/machine/deadlock.h"
+#include "host/util/clock.h"
+#include "node/scheduling.h"
 
 namespace raycube::host {
 
@@ -32,7 +35,12 @@ namespace {
 class HostInbox {
  public:
   HostInbox(int ranks, int processors, const EngineHooks& hooks)
-      : hooks_(hooks), evaluated_(std::size_t(processors), 0), results_(std::size_t(ranks)) {}
+      : hooks_(hooks),
+        evaluated_(std::size_t(processors), 0),
+        stepsWorked_(std::size_t(processors), 0),
+        lockedOn_(std::size_t(processors), -1),
+        lockedRays_(std::size_t(processors), 0),
+        results_(std::size_t(ranks)) {}
 
   void onPacket(int from, Packet kind, std::span<const char> bytes) {
     switch (kind) {
@@ -46,6 +54,9 @@ class HostInbox {
       case Packet::Progress:
         queues::forEachEntry<queues::ProcessorProgress>(bytes, [&](const queues::ProcessorProgress& p) {
           evaluated_.at(p.processor) = p.segmentsEvaluated;
+          stepsWorked_.at(p.processor) = p.stepsWorked;
+          lockedOn_.at(p.processor) = p.lockedOn;
+          lockedRays_.at(p.processor) = p.lockedRays;
         });
         progressed_ = true;
         break;
@@ -62,6 +73,16 @@ class HostInbox {
     hooks_.progress(evaluated_);
     progressed_ = false;
   }
+  // --fifo-full lock: a deadlock, proved from what the ranks last said of their processors' locks.
+  std::optional<Deadlock> deadlock(DeadlockProof& proof, const node::RegionMap& regions,
+                                   std::size_t capacity) const {
+    const std::vector<int> cycle = proof.look(lockedOn_, stepsWorked_, Clock::now());
+    for (int p : cycle)
+      if (lockedRays_[std::size_t(p)] < capacity) return std::nullopt;
+    if (cycle.empty()) return std::nullopt;
+    return deadlockOf(cycle, regions,
+                      [&](int from, int) { return std::size_t(lockedRays_[std::size_t(from)]); });
+  }
   int ready() const { return ready_; }
   int finished() const { return finished_; }
   std::vector<std::optional<RankResults>>& results() { return results_; }
@@ -71,12 +92,17 @@ class HostInbox {
   int ready_ = 0, finished_ = 0;
   bool progressed_ = false;
   std::vector<std::uint64_t> evaluated_;  // per processor: ray segments (the progress line)
+  std::vector<std::uint64_t> stepsWorked_;
+  std::vector<int> lockedOn_;
+  std::vector<std::uint64_t> lockedRays_;
   std::vector<std::optional<RankResults>> results_;
 };
 
-// Polls MPI until done() holds; the host thread naps when nothing arrives (it shares the cores).
-template <class Done>
-void pumpUntil(queues::MpiLink& link, HostInbox& inbox, Done&& done) {
+// Polls MPI until done() holds, calling each() every pass; the host thread naps when nothing arrives (it
+// shares the cores).
+template <class Done, class Each = void (*)()>
+void pumpUntil(
+    queues::MpiLink& link, HostInbox& inbox, Done&& done, Each&& each = [] {}) {
   const queues::MpiLink::OnPacket handle = [&](int from, Packet kind, std::span<const char> bytes) {
     inbox.onPacket(from, kind, bytes);
   };
@@ -84,6 +110,7 @@ void pumpUntil(queues::MpiLink& link, HostInbox& inbox, Done&& done) {
     const std::size_t n = link.poll(handle);
     link.progressSends();
     inbox.reportProgress();
+    each();
     if (n == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
 }
@@ -118,7 +145,23 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
   pumpUntil(link_, inbox, [&] { return inbox.ready() == ranks - 1; });
   if (hooks.synthesisStarts) hooks.synthesisStarts();
   for (int r = 1; r < ranks; ++r) link_.post(r, Packet::Start, {});
-  pumpUntil(link_, inbox, [&] { return inbox.finished() == ranks - 1; });
+  // --fifo-full lock: a deadlock proved stops every rank's processors as termination would (3.6's
+  // announcement), and is the run's result.
+  const auto start = Clock::now();
+  std::optional<Deadlock> deadlock;
+  DeadlockProof proof(
+      std::chrono::duration_cast<std::chrono::milliseconds>(node::scheduling::kDeadlockQuiet));
+  auto nextLook = start;
+  auto lookForDeadlock = [&] {
+    if (context.fifoFull != node::FifoFull::Lock || deadlock || Clock::now() < nextLook) return;
+    nextLook = Clock::now() + node::scheduling::kDeadlockPoll;
+    deadlock = inbox.deadlock(proof, context.regions, queueCapacity_);
+    if (!deadlock) return;
+    deadlock->wallSeconds = secondsSince(start);
+    for (int r = 1; r < ranks; ++r) link_.post(r, Packet::Terminate, {});
+  };
+  pumpUntil(
+      link_, inbox, [&] { return inbox.finished() == ranks - 1; }, lookForDeadlock);
   link_.flushSends();
 
   MachineRun run;
@@ -140,6 +183,7 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
     distributed.ranks.push_back(results.rank);
   }
   run.mpi = std::move(distributed);
+  run.deadlock = std::move(deadlock);
   return run;
 }
 

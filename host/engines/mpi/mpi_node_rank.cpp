@@ -75,11 +75,25 @@ LocalTransports<Real> localTransports(const MachineJob& job, queues::MpiIntercon
   return local;
 }
 
+// What the host hears of a processor: its progress and, under the paper's flow control, its lock. Steps
+// are read before the lock, as the threads engine's deadlock watch reads them.
+template <class Real>
+queues::ProcessorProgress progressOf(const queues::MpiInterconnect<Real>& net,
+                                     const node::LogicalProcessor<Real>& processor, int id) {
+  queues::ProcessorProgress p;
+  p.processor = std::uint32_t(id);
+  p.stepsWorked = processor.stepsWorked();
+  p.segmentsEvaluated = processor.segmentsEvaluated();
+  p.lockedOn = processor.lockedOn();
+  if (p.lockedOn >= 0) p.lockedRays = net.raysToward(id, p.lockedOn);
+  return p;
+}
+
 // The communication task's view of the processors' threads: when they have stopped, their progress, the
 // host's start and quit, and their first failure.
 template <class Real>
 typename queues::MpiInterconnect<Real>::ServeHooks serveHooks(
-    const std::atomic<std::size_t>& running,
+    const queues::MpiInterconnect<Real>& net, const std::atomic<std::size_t>& running,
     const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes, const std::vector<int>& ids,
     std::latch& synthesis, const Failure& failure) {
   typename queues::MpiInterconnect<Real>::ServeHooks hooks;
@@ -87,7 +101,7 @@ typename queues::MpiInterconnect<Real>::ServeHooks serveHooks(
   hooks.progress = [&] {
     std::vector<queues::ProcessorProgress> progress;
     for (std::size_t k = 0; k < nodes.size(); ++k)
-      if (nodes[k]) progress.push_back({std::uint32_t(ids[k]), nodes[k]->segmentsEvaluated()});
+      if (nodes[k]) progress.push_back(progressOf(net, *nodes[k], ids[k]));
     return progress;
   };
   hooks.other = [&](int from, Packet kind, std::span<const char>) {
@@ -164,7 +178,7 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
     subdivided.wait();
     if (failure.failed()) throw std::runtime_error(failure.cause());
     link.post(0, Packet::Ready, {});
-    net.serve(serveHooks<Real>(running, nodes, ids, synthesis, failure));
+    net.serve(serveHooks<Real>(net, running, nodes, ids, synthesis, failure));
   } catch (const std::exception& e) {
     link.abort(e.what());  // threads may be waiting for rays that will never come: end the job here
   }

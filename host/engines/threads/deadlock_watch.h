@@ -24,39 +24,24 @@ std::optional<Deadlock> watchForDeadlock(
     const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes, const node::RegionMap& regions,
     std::size_t capacity, RaysIn&& rays, Stop&& stop) {
   const auto start = Clock::now();
-  auto worked = [&](const std::vector<int>& cycle) {
-    std::vector<std::uint64_t> w;
-    for (int p : cycle) w.push_back(nodes[std::size_t(p)]->stepsWorked());
-    return w;
-  };
-  std::vector<int> candidate;
-  std::vector<std::uint64_t> candidateWorked;
-  Clock::time_point since;
+  DeadlockProof proof(
+      std::chrono::duration_cast<std::chrono::milliseconds>(node::scheduling::kDeadlockQuiet));
   std::vector<int> lockedOn(nodes.size());
+  std::vector<std::uint64_t> worked(nodes.size());
   while (!stop()) {
     std::this_thread::sleep_for(node::scheduling::kDeadlockPoll);
     // Steps first, then locks: a processor whose count is the same later held this lock all along.
-    std::vector<std::uint64_t> before;
-    for (const auto& n : nodes) before.push_back(n->stepsWorked());
+    for (std::size_t p = 0; p < nodes.size(); ++p) worked[p] = nodes[p]->stepsWorked();
     for (std::size_t p = 0; p < nodes.size(); ++p) lockedOn[p] = nodes[p]->lockedOn();
-    const std::vector<int> cycle = lockCycle(lockedOn);
-    if (cycle.empty() || cycle != candidate) {
-      candidate = cycle;
-      candidateWorked.clear();
-      for (int p : cycle) candidateWorked.push_back(before[std::size_t(p)]);
-      since = Clock::now();
-      continue;
-    }
-    if (Clock::now() - since < node::scheduling::kDeadlockQuiet) continue;
+    const std::vector<int> cycle = proof.look(lockedOn, worked, Clock::now());
+    if (cycle.empty()) continue;
     bool full = true;
     for (std::size_t k = 0; k < cycle.size(); ++k)
       full = full && rays(cycle[k], cycle[(k + 1) % cycle.size()]) >= capacity;
-    if (full && worked(cycle) == candidateWorked) {
-      Deadlock deadlock = deadlockOf(cycle, regions, rays);
-      deadlock.wallSeconds = secondsSince(start);
-      return deadlock;
-    }
-    if (worked(cycle) != candidateWorked) candidate.clear();  // it moved: start over
+    if (!full) continue;
+    Deadlock deadlock = deadlockOf(cycle, regions, rays);
+    deadlock.wallSeconds = secondsSince(start);
+    return deadlock;
   }
   return std::nullopt;
 }
