@@ -19,11 +19,14 @@ using testing_support::renderAndCompare;
 using testing_support::renderMachineWatched;
 using testing_support::settingsFor;
 
+// The machine in emulated time with an overflow list behind full FIFOs, so that the small capacities here
+// test saturation, not the paper's deadlocks (ipsc1 locks by default: fifo_full_test has those).
 MachineSettings emulated(int rows, int columns, const std::string& platform = "ipsc1") {
   MachineSettings m;
   m.rows = rows;
   m.columns = columns;
   m.emulate = builtinPlatform(platform);
+  m.fifoFull = node::FifoFull::Overflow;
   return m;
 }
 
