@@ -13,9 +13,12 @@
 namespace raycube::host {
 namespace {
 
+using testing_support::completesAsReferenceOrDeadlocks;
 using testing_support::deadlockOf;
 using testing_support::expectValidCycle;
 using testing_support::locking;
+using testing_support::LockingCase;
+using testing_support::lockingCases;
 using testing_support::renderMachineWatched;
 using testing_support::settingsFor;
 using testing_support::uniformGrid;
@@ -31,31 +34,15 @@ TEST(FifoFull, LockingRunsThatCompleteGiveTheReferenceImageAtAnyProcessorsAndCap
   const RenderSettings settings = settingsFor(32);
   const RenderResult reference = renderReference(scene, settings);
   int completed = 0;
-  for (const auto& [rows, columns, capacity, lights] :
-       std::vector<std::tuple<int, int, std::size_t, node::LightRayMode>>{
-           {1, 1, 1, node::LightRayMode::Messages},
-           {2, 2, 128, node::LightRayMode::Messages},
-           {4, 4, 512, node::LightRayMode::Messages},
-           {3, 5, 8, node::LightRayMode::Pyramid},
-           {4, 4, 128, node::LightRayMode::Pyramid}}) {
+  for (const LockingCase& c : lockingCases())
     for (const std::string engine : {"threads", "threads with jitter", "ipsc1"}) {
-      const std::string label =
-          fmt::format("{} {}x{} capacity {} lights {}", engine, rows, columns, capacity, int(lights));
-      MachineSettings m = locking(uniformGrid(rows, columns, capacity, lights));
+      MachineSettings m = locking(uniformGrid(c.rows, c.columns, c.capacity, c.lights));
       if (engine == "ipsc1") m.emulate = builtinPlatform("ipsc1");
       if (engine == "threads with jitter") m.jitterSeed = 11;  // random delays around every transport call
-      MachineReport report;
-      try {
-        const RenderResult result = renderMachineWatched(scene, settings, m, report, label);
-        testing_support::expectMachineMatchesReference(reference, result, report, label);
-        ++completed;
-      } catch (const MachineDeadlocked& d) {
-        // Allowed (the paper's open question), but only as a proved cycle.
-        ASSERT_TRUE(report.deadlock) << label;
-        expectValidCycle(*report.deadlock, report, capacity);
-      }
+      completed += completesAsReferenceOrDeadlocks(scene, reference, settings, m,
+                                                   fmt::format("{} {}x{} capacity {} lights {}", engine,
+                                                               c.rows, c.columns, c.capacity, int(c.lights)));
     }
-  }
   EXPECT_GE(completed, 9) << "most of these runs complete; a test that never compares proves nothing";
 }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "host/machine/deadlock.h"
@@ -159,6 +160,37 @@ inline std::optional<Deadlock> deadlockOf(const core::Scene& scene, const Render
     return report.deadlock;
   }
   return std::nullopt;
+}
+
+// Grids, capacities and light modes a locking machine is run at: some lock often, one has FIFOs of one ray.
+struct LockingCase {
+  int rows, columns;
+  std::size_t capacity;
+  node::LightRayMode lights;
+};
+inline std::vector<LockingCase> lockingCases() {
+  return {{1, 1, 1, node::LightRayMode::Messages},
+          {2, 2, 128, node::LightRayMode::Messages},
+          {4, 4, 512, node::LightRayMode::Messages},
+          {3, 5, 8, node::LightRayMode::Pyramid},
+          {4, 4, 128, node::LightRayMode::Pyramid}};
+}
+
+// A locking run: true when it completed with the reference's image; a deadlock is allowed (the paper's
+// open question), but only as a proved cycle of full FIFOs.
+inline bool completesAsReferenceOrDeadlocks(const core::Scene& scene, const RenderResult& reference,
+                                            const RenderSettings& settings, const MachineSettings& m,
+                                            const std::string& label) {
+  MachineReport report;
+  try {
+    const RenderResult result = renderMachineWatched(scene, settings, m, report, label);
+    expectMachineMatchesReference(reference, result, report, label);
+    return true;
+  } catch (const MachineDeadlocked&) {
+    EXPECT_TRUE(report.deadlock) << label;
+    if (report.deadlock) expectValidCycle(*report.deadlock, report, fifoRaysFor(m));
+    return false;
+  }
 }
 
 }  // namespace raycube::host::testing_support

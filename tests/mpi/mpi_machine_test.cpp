@@ -126,25 +126,13 @@ TEST(MpiMachineTest, LockingRunsThatCompleteGiveTheReferenceImage) {
   const RenderSettings settings = settingsFor(32);
   const RenderResult reference = renderReference(scene, settings);
   int completed = 0;
-  for (const auto& [rows, columns, capacity, lights] :
-       std::vector<std::tuple<int, int, std::size_t, node::LightRayMode>>{
-           {2, 2, 128, node::LightRayMode::Messages},
-           {3, 5, 8, node::LightRayMode::Pyramid},
-           {4, 4, 128, node::LightRayMode::Pyramid},
-           {4, 4, 16, node::LightRayMode::Messages}}) {
-    const std::string label = std::to_string(worldSize()) + " ranks, lock, " + std::to_string(rows) + "x" +
-                              std::to_string(columns) + " capacity " + std::to_string(capacity);
-    MachineSettings m = locking(uniformGrid(rows, columns, capacity, lights));
+  for (const LockingCase& c : lockingCases()) {
+    MachineSettings m = locking(uniformGrid(c.rows, c.columns, c.capacity, c.lights));
     m.mpi = true;
-    MachineReport report;
-    try {
-      const RenderResult result = renderMachineWatched(scene, settings, m, report, label);
-      expectMachineMatchesReference(reference, result, report, label);
-      ++completed;
-    } catch (const MachineDeadlocked&) {
-      ASSERT_TRUE(report.deadlock) << label;
-      expectValidCycle(*report.deadlock, report, capacity);
-    }
+    completed += completesAsReferenceOrDeadlocks(
+        scene, reference, settings, m,
+        std::to_string(worldSize()) + " ranks, lock, " + std::to_string(c.rows) + "x" +
+            std::to_string(c.columns) + " capacity " + std::to_string(c.capacity));
   }
   EXPECT_GE(completed, 3) << "most of these runs complete; a test that never compares proves nothing";
 }
