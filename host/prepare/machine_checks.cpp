@@ -44,7 +44,8 @@ void requireMachineFits(const MachineSettings& machine, const core::View& view) 
     throw std::invalid_argument(
         "--fifo-full lock runs on threads and on the emulated machine (--emulate, --platform), not yet over "
         "--transport mpi: use --fifo-full overflow there");
-  if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
+  if (machine.subsampleWindow < 1 && machine.subsampleWindow != kAutoWindow)
+    throw std::invalid_argument("--subsample must be at least 1, or auto");
 }
 
 std::pair<int, int> defaultProcessorGrid(const core::View& view) {
