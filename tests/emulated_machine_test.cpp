@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/nff_reader.h"
 #include "core/spd/balls.h"
+#include "host/prepare/load_estimate.h"
 #include "host/render/sequential_renderers.h"
 #include "host/report/emulated_report.h"
 #include "host/studies/scaling.h"
@@ -80,7 +82,7 @@ std::filesystem::path oneFreeNodePlatform() {
     <host id="node-0" speed="1f"/>
     <host id="manager" speed="1f"/>
     <link id="node-0:manager" bandwidth="1e30Bps" latency="0s"/>
-    <route src="node-0" dst="manager" symmetrical="NO"><link_ctn id="node-0:manager"/></route>
+    <route src="node-0" dst="manager" symmetrical="YES"><link_ctn id="node-0:manager"/></route>
   </zone>
 </platform>
 )";
@@ -249,5 +251,127 @@ TEST(Scaling, NearSquareGrids) {
   EXPECT_EQ(nearSquareGrid(7), std::make_pair(1, 7));
 }
 
+
+// ---- The host pays for its work (issue 40): its preparation in simulated time, before the synthesis.
+
+// A platform written for a test: a manager and two nodes at 100 flop-equivalents per second, each node's link
+// to the manager 1000 bytes per second with a quarter-second latency, both ways.
+std::filesystem::path twoNodeHostPlatform() {
+  const auto path = std::filesystem::temp_directory_path() / "raycube_two_node_host.xml";
+  std::ofstream out(path);
+  out << "<?xml version='1.0'?>\n<!DOCTYPE platform SYSTEM \"https://simgrid.org/simgrid.dtd\">\n"
+         "<platform version=\"4.1\">\n  <zone id=\"m\" routing=\"Full\">\n"
+         "    <host id=\"node-0\" speed=\"100f\"/>\n    <host id=\"node-1\" speed=\"100f\"/>\n"
+         "    <host id=\"manager\" speed=\"100f\"/>\n";
+  for (int n = 0; n < 2; ++n)
+    out << fmt::format("    <link id=\"node-{0}:manager\" bandwidth=\"1000Bps\" latency=\"0.25s\"/>\n", n);
+  out << "    <link id=\"node-0:node-1\" bandwidth=\"1000Bps\" latency=\"0.25s\"/>\n"
+         "    <link id=\"node-1:node-0\" bandwidth=\"1000Bps\" latency=\"0.25s\"/>\n";
+  for (int n = 0; n < 2; ++n)
+    out << fmt::format(
+        "    <route src=\"node-{0}\" dst=\"manager\" symmetrical=\"YES\"><link_ctn id=\"node-{0}:manager\"/>"
+        "</route>\n",
+        n);
+  out << "    <route src=\"node-0\" dst=\"node-1\" symmetrical=\"NO\"><link_ctn id=\"node-0:node-1\"/></route>\n"
+         "    <route src=\"node-1\" dst=\"node-0\" symmetrical=\"NO\"><link_ctn id=\"node-1:node-0\"/></route>\n"
+         "  </zone>\n</platform>\n";
+  return path;
+}
+
+// Two spheres and a light, 4x4 pixels sub-sampled in windows of 2 (four pixels), a BSP over two processors:
+// the host's time worked out by hand from the cost table's prices, the counts the host's code made, and the
+// links' figures, against what the host actor was charged.
+TEST(HostPreprocessing, EqualsAHandCountOnATinyScene) {
+  const core::Scene scene = core::parseNff(
+      "v\nfrom 0 -6 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0.01\nresolution 4 4\nl 2 -4 4\n"
+      "f 1 0.2 0.2 0.6 0.4 10 0 0\ns -0.8 0 0 0.6\ns 0.8 0 0 0.6\n",
+      "two_spheres.nff");
+  MachineSettings m;
+  m.rows = 1;
+  m.columns = 2;
+  m.balance = Balance::Bsp;
+  m.subsampleWindow = 2;
+  m.lightRays = node::LightRayMode::Messages;
+  m.emulate = userPlatform(twoNodeHostPlatform(), {});
+  CostTable& c = m.emulate->costs;
+  c.sendSeconds = 0.5;
+  c.receiveSeconds = 0.125;
+  MachineReport report;
+  renderMachineWatched(scene, settingsFor(4), m, report, "hand count");
+  ASSERT_TRUE(report.emulated);
+  const HostWork& w = report.hostWork;
+  const core::TraceCounters& sampled = w.sampling.processed;
+  // What the host's code counted, where a hand can count it too: one eye ray per window, each object
+  // against each region.
+  EXPECT_EQ(sampled.of(core::RayKind::Eye), 4u);
+  EXPECT_EQ(w.regionTests, 2u * 2u);
+  EXPECT_GT(w.piecesWeighed, 0u);
+  EXPECT_GT(w.mappingSteps, 0u);
+  const double speed = 100;
+  const double rays = double(sampled.totalRays());
+  const double samplingFlops = c.sphereTest * double(sampled.testsByShape[0]) +
+                               c.cellStep * double(sampled.boxTests + sampled.cellSteps) +
+                               (c.raySegment + c.rayFinished + c.raySpawned) * rays +
+                               c.contribution * double(sampled.contributions);
+  const double sampling = samplingFlops / speed;
+  const double partitioning = c.segmentClip * double(w.piecesWeighed) / speed;
+  const double pruning = c.regionTest * double(w.regionTests) / speed;
+  const double mapping = c.mappingStep * double(w.mappingSteps) / speed;
+  // Each setup in turn: the manager's send overhead, the link's latency and bytes; the last node then pays
+  // its receipt.
+  const HostPreprocessing& pre = report.emulated->preprocessing;
+  EXPECT_EQ(pre.messages, 2u);
+  const double transfer = 2 * (c.sendSeconds + 0.25) + double(pre.bytes) / 1000 + c.receiveSeconds;
+  const double tolerance = 1e-9;
+  EXPECT_NEAR(pre.sampling, sampling, tolerance);
+  EXPECT_NEAR(pre.partitioning, partitioning, tolerance);
+  EXPECT_NEAR(pre.pruning, pruning, tolerance);
+  EXPECT_NEAR(pre.mapping, mapping, tolerance);
+  EXPECT_NEAR(pre.transfer, transfer, tolerance);
+  EXPECT_NEAR(pre.seconds, sampling + partitioning + pruning + mapping + transfer, tolerance);
+  EXPECT_NEAR(report.emulated->endToEnd(), pre.seconds + report.emulated->makespan, tolerance);
+  // A node's setup holds at least its objects' boxes and the shared context: far more than a header.
+  EXPECT_GT(pre.bytes, 2 * 2 * sizeof(node::EyeBox));
+}
+
+// The same run pays the same, to the last digit; what the host pays never moves the synthesis (table 2's
+// span), and the grid, which needs no estimate, pays no sub-sampling.
+TEST(HostPreprocessing, IsDeterministicAndLeavesTheSynthesisAlone) {
+  const core::Scene scene = core::makeBalls(1);
+  MachineSettings m = emulated(2, 2);
+  m.balance = Balance::Bsp;
+  std::vector<MachineReport> reports(3);
+  for (int i = 0; i < 2; ++i) renderMachineWatched(scene, settingsFor(16), m, reports[i], "host twice");
+  MachineSettings dearer = m;
+  dearer.emulate->costs.regionTest *= 10;
+  dearer.emulate->costs.mappingStep *= 10;
+  renderMachineWatched(scene, settingsFor(16), dearer, reports[2], "dearer host");
+  const HostPreprocessing& a = reports[0].emulated->preprocessing;
+  EXPECT_GT(a.seconds, 0);
+  EXPECT_EQ(a.seconds, reports[1].emulated->preprocessing.seconds);
+  EXPECT_EQ(a.bytes, reports[1].emulated->preprocessing.bytes);
+  EXPECT_EQ(reports[0].emulated->makespan, reports[1].emulated->makespan);
+  EXPECT_EQ(reports[2].emulated->makespan, reports[0].emulated->makespan);
+  EXPECT_GT(reports[2].emulated->preprocessing.seconds, a.seconds);
+  EXPECT_EQ(reports[2].emulated->preprocessing.sampling, a.sampling);
+
+  MachineSettings grid = m;
+  grid.balance = Balance::Uniform;
+  MachineReport uniform;
+  renderMachineWatched(scene, settingsFor(16), grid, uniform, "grid");
+  EXPECT_EQ(uniform.emulated->preprocessing.sampling, 0);
+  EXPECT_EQ(uniform.emulated->preprocessing.partitioning, 0);
+  EXPECT_GT(uniform.emulated->preprocessing.pruning, 0);
+}
+
+// --subsample auto: the window of the least predicted end-to-end time grows with the processors and, slowly,
+// with the resolution (w = cbrt(2 h / c sqrt(P S))).
+TEST(HostPreprocessing, TheAutomaticWindowFollowsTheResolution) {
+  EXPECT_EQ(subsampleWindowFor(128, 128, 32), 13);
+  EXPECT_EQ(subsampleWindowFor(512, 512, 32), 21);
+  EXPECT_LT(subsampleWindowFor(128, 128, 4), subsampleWindowFor(128, 128, 32));
+  EXPECT_EQ(subsampleWindowFor(4, 4, 64), 4);  // never past the screen
+  EXPECT_GE(subsampleWindowFor(1, 1, 1), 1);
+}
 }  // namespace
 }  // namespace raycube::host

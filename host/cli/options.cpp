@@ -288,8 +288,11 @@ void addMachineOptions(CLI::App* render, RenderCommand& cmd) {
       ->transform(CLI::IsMember(keysOf(kLoadMetrics), CLI::ignore_case));
   render
       ->add_option("--subsample", cmd.machine.subsampleWindow,
-                   "Load estimate: one sub-sampled pixel per WxW window")
-      ->check(CLI::Range(1, 1024));
+                   "Load estimate: one sub-sampled pixel per WxW window; auto: from the resolution and the "
+                   "processors (the least predicted end-to-end time, host/prepare/load_estimate.h)")
+      ->transform(CLI::Transformer(std::map<std::string, std::string>{{"auto", std::to_string(kAutoWindow)}},
+                                   CLI::ignore_case))
+      ->check(CLI::Range(kAutoWindow, 1024));
 }
 
 // What drives the machine: threads, SimGrid in simulated time, or MPI ranks.

@@ -98,7 +98,9 @@ std::vector<std::pair<std::string, std::string>> settingsOf(const RenderCommand&
   s.insert(s.end(), {{"processors", cmd.procs},
                      {"balance", cmd.balance},
                      {"load metric", cmd.loadMetric},
-                     {"sub-sampling window", std::to_string(cmd.machine.subsampleWindow)},
+                     {"sub-sampling window", cmd.machine.subsampleWindow == kAutoWindow
+                                                 ? std::string("auto")
+                                                 : std::to_string(cmd.machine.subsampleWindow)},
                      {"light rays", cmd.lightRays},
                      {"FIFO capacity", std::to_string(fifoRaysFor(cmd.machine))},
                      {"full FIFO", cmd.fifoFull.empty() ? "engine's own" : cmd.fifoFull},

@@ -23,7 +23,8 @@ std::map<std::string, double CostTable::*> costFields() {
           {"raySegment", &CostTable::raySegment},    {"rayFinished", &CostTable::rayFinished},
           {"raySpawned", &CostTable::raySpawned},    {"contribution", &CostTable::contribution},
           {"sendSeconds", &CostTable::sendSeconds},  {"receiveSeconds", &CostTable::receiveSeconds},
-          {"relaySeconds", &CostTable::relaySeconds}};
+          {"relaySeconds", &CostTable::relaySeconds},  {"segmentClip", &CostTable::segmentClip},
+          {"regionTest", &CostTable::regionTest},    {"mappingStep", &CostTable::mappingStep}};
 }
 
 // The message costs a cost table gave in flop-equivalents before they were seconds: what replaces each.

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "host/machine/host_work.h"
 #include "node/logical_processor.h"
 #include "queues/routing.h"
 
@@ -31,12 +32,23 @@ struct CostTable {
   double sendSeconds = 0;     // a message sent (a ray, or the token), on the sender's CPU
   double receiveSeconds = 0;  // a message received, on the receiver's CPU
   double relaySeconds = 0;    // store and forward: a node receives and re-sends another's message
+  // The host's own work before the synthesis (HostWork), at the manager's speed. Its sub-sampled rays cost
+  // what a node's rays cost (the fields above); these price the rest, hand counts as above.
+  double segmentClip = 20;  // a sub-sampled segment piece weighed at a BSP line or clipped (Liang-Barsky)
+  double regionTest = 25;   // an object's eye box against a region's wedge (node::mayTouch: 8 divisions,
+                            // margins, min/max, compares) or against a light volume
+  double mappingStep = 2;   // the embedding: one node's hops to a vertex's neighbours weighed (popcount, add)
 
   // What a node's counted work costs: its computation in flop-equivalents, its messages in seconds (each
   // linear: a difference of two calls is the cost of the work between them). A token visit is a message
   // received and one sent (3.6).
   double flopsOf(const node::NodeStats& stats) const;
   double messageSecondsOf(const node::NodeStats& stats) const;
+  // What the host's work costs, phase by phase, in flop-equivalents.
+  double samplingFlopsOf(const HostWork& work) const { return flopsOf(work.sampling); }
+  double partitioningFlopsOf(const HostWork& work) const { return segmentClip * double(work.piecesWeighed); }
+  double pruningFlopsOf(const HostWork& work) const { return regionTest * double(work.regionTests); }
+  double mappingFlopsOf(const HostWork& work) const { return mappingStep * double(work.mappingSteps); }
   bool operator==(const CostTable&) const = default;
 };
 

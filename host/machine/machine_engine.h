@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/contribution_sink.h"
+#include "host/machine/host_work.h"
 #include "host/machine/machine_report.h"
 #include "node/logical_processor.h"
 
@@ -21,6 +22,8 @@ struct EngineHooks {
   // Ray segments each processor has evaluated so far, in processor order (progress): called now and then
   // by the host's loop while tracing.
   std::function<void(const std::vector<std::uint64_t>& segmentsEvaluated)> progress;
+  // What the host did before handing over (3.2 steps 1-2, 3.7.1): an engine with a clock charges it.
+  const HostWork* hostWork = nullptr;
 };
 
 struct MachineRun {

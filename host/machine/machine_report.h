@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "host/machine/deadlock.h"
+#include "host/machine/host_work.h"
 #include "host/machine/machine_settings.h"
 #include "node/logical_processor.h"
 #include "queues/queue_stats.h"
@@ -39,9 +40,19 @@ struct LinkTraffic {
   std::uint64_t messages = 0, bytes = 0;
 };
 inline constexpr std::uint32_t kHostNode = UINT32_MAX;
+// The host's preparation in simulated time (3.2 steps 1-2, 3.7.1): its counted work (HostWork) at the
+// manager's speed, phase after phase, then each node's setup sent over the manager's links, one node after
+// the other; it ends when the last node has its setup. Table 2 leaves it out ("a few minutes").
+struct HostPreprocessing {
+  double sampling = 0, partitioning = 0, pruning = 0, mapping = 0, transfer = 0;  // simulated seconds
+  double seconds = 0;  // all of it: the synthesis starts then
+  std::uint64_t messages = 0, bytes = 0;  // the setups sent
+};
 struct EmulatedRun {
   std::string platform;
-  double makespan = 0;            // simulated seconds from the start of synthesis to the last contribution
+  double makespan = 0;  // simulated seconds from the start of synthesis to the last contribution
+  HostPreprocessing preprocessing;  // before the synthesis
+  double endToEnd() const { return preprocessing.seconds + makespan; }
   double nodeSpeed = 0;           // node-0's speed, flop-equivalents per second (what --fit scales)
   std::uint64_t rayMessages = 0;  // simulated ray messages, relays included
   double wallSeconds = 0;         // what the simulation took on this host
@@ -84,6 +95,7 @@ struct MachineReport {
   // metric used to partition; and how many rays were sub-sampled.
   std::vector<double> estimatedLoad;
   std::uint64_t subsampledRays = 0;
+  HostWork hostWork;  // the host's work before the synthesis, counted
   // The regions on the iPSC's hypercube: node number per processor, and hops per adjacency edge. Empty when
   // not mapped (settings.mapHypercube false and not emulating).
   std::vector<std::uint32_t> hypercubeNode;

@@ -37,11 +37,14 @@ struct PartitionForecast {
   double bspSpan = 0, uniformSpan = 0;
 };
 
+// MachineSettings::subsampleWindow: chosen from the resolution and the processors (subsampleWindowFor).
+inline constexpr int kAutoWindow = 0;
+
 struct MachineSettings {
   int rows = 4;
   int columns = 4;
   Balance balance = Balance::Auto;  // with Bsp only rows x columns (the processor count) matters
-  int subsampleWindow = 8;          // 3.7.1: one sub-sampled pixel per w x w window
+  int subsampleWindow = 8;  // 3.7.1: one sub-sampled pixel per w x w window; kAutoWindow: from the resolution
   LoadMetric loadMetric = LoadMetric::Cost;
   // Rays per face FIFO (3.5.2); none: the engine's own (fifoRaysFor).
   std::optional<std::size_t> queueCapacity;

@@ -59,7 +59,8 @@ class LineSums {
 struct Splitter {
   LoadMetric metric;
   std::vector<node::SampleRect> leaves;
-  bool spareCore;  // the next cut may hand one of its sides to another core
+  bool spareCore;                   // the next cut may hand one of its sides to another core
+  std::uint64_t piecesWeighed = 0;  // the host's work: pieces weighed at the lines, then clipped to a side
 
   void split(const node::SampleRect& r, int processors, const std::vector<ScreenSegment>& pieces) {
     if (processors == 1) {
@@ -68,6 +69,7 @@ struct Splitter {
     }
     const int axis = cutAxis(r, processors);
     const std::pair<int, int> cut = bestCut(r, processors, pieces, axis);
+    piecesWeighed += 3 * pieces.size();  // weighed across the lines once, clipped to each side
     const int best = cut.first, p1 = cut.second, p2 = processors - p1;
     node::SampleRect first = r, second = r;
     (axis == 0 ? first.x1 : first.y1) = best;
@@ -86,8 +88,10 @@ struct Splitter {
     });
     beyond.split(second, p2, clipAll(pieces, second, Side{axis, double(best), true}));
     beforeDone.get();
-    for (const Splitter* side : {&before, &beyond})
+    for (const Splitter* side : {&before, &beyond}) {
       leaves.insert(leaves.end(), side->leaves.begin(), side->leaves.end());
+      piecesWeighed += side->piecesWeighed;
+    }
   }
 
   // Cut across the longer side, unless the shorter one is the only one that can hold both halves.
@@ -225,12 +229,14 @@ LineLoads loadsAcrossLines(const std::vector<ScreenSegment>& pieces, int axis, i
 }
 
 std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
-                                           const LoadSample& sample, LoadMetric metric, int cores) {
+                                           const LoadSample& sample, LoadMetric metric, int cores,
+                                           std::uint64_t* piecesWeighed) {
   if (processors < 1 || (long long)samplesX * samplesY < processors)
     throw std::invalid_argument("BSP: more processors than samples");
   Splitter splitter{metric, {}, (cores > 0 ? unsigned(cores) : std::thread::hardware_concurrency()) > 1};
   const node::SampleRect screen{0, samplesX, 0, samplesY};
   splitter.split(screen, processors, splitter.clipAll(sample.segments, screen));
+  if (piecesWeighed) *piecesWeighed = sample.segments.size() + splitter.piecesWeighed;
   return splitter.leaves;
 }
 

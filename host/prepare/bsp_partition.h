@@ -4,6 +4,7 @@
 // two (figure 9). P need not be a power of two: a region meant for P processors is cut in the ratio
 // floor(P/2) : ceil(P/2) where the cut leaves both sides enough samples, at the line that best equalises
 // load per processor.
+#include <cstdint>
 #include <vector>
 
 #include "host/prepare/load_estimate.h"
@@ -12,8 +13,10 @@
 namespace raycube::host {
 
 // cores: how many the cutting may use (0: the host's); the partition is the same for any number.
+// piecesWeighed, if given: the segment pieces the cuts weighed and clipped (the host's work, HostWork).
 std::vector<node::SampleRect> bspPartition(int samplesX, int samplesY, int processors,
-                                           const LoadSample& sample, LoadMetric metric, int cores = 0);
+                                           const LoadSample& sample, LoadMetric metric, int cores = 0,
+                                           std::uint64_t* piecesWeighed = nullptr);
 
 // The load on each side of every candidate line of an area [lo, hi) along `axis` (0: x, the lines x = k;
 // 1: y), k = lo + 1 ... hi - 1: below[k - lo - 1] and above[k - lo - 1]. As the BSP weighs a line: the ray

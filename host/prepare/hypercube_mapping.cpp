@@ -71,8 +71,10 @@ std::vector<std::vector<int>> neighbourLists(const AdjacencyGraph& graph) {
 // candidate move cost O(1) to judge, so greedy and descent scan every node for every vertex cheaply.
 class Placement {
  public:
-  Placement(const std::vector<std::vector<int>>& neighbours, int dimension)
+  // steps: where to count the placement's work (HostWork::mappingSteps), shared by its copies.
+  Placement(const std::vector<std::vector<int>>& neighbours, int dimension, std::uint64_t* steps)
       : neighbours_(&neighbours),
+        steps_(steps),
         nodes_(std::uint32_t{1} << dimension),
         nodeOf_(neighbours.size(), kUnplaced),
         vertexAt_(nodes_, -1),
@@ -90,6 +92,7 @@ class Placement {
       const int chosen = step == 0 ? first : nextVertex(placedNeighbours);
       std::uint32_t bestNode = kUnplaced;
       int bestHops = std::numeric_limits<int>::max();
+      *steps_ += nodes_;
       for (std::uint32_t node = 0; node < nodes_; ++node) {
         if (vertexAt_[node] < 0 && hopsFrom(chosen, node) < bestHops) {
           bestHops = hopsFrom(chosen, node);
@@ -111,6 +114,7 @@ class Placement {
         const std::uint32_t here = nodeOf_[v];
         int bestDelta = 0;
         std::uint32_t bestNode = kUnplaced;
+        *steps_ += nodes_;
         for (std::uint32_t there = 0; there < nodes_; ++there) {
           if (there == here) continue;
           const int delta = swapDelta(v, there);
@@ -169,6 +173,7 @@ class Placement {
   }
 
   long totalHops() const {
+    *steps_ += std::uint64_t(edges_);
     long total = 0;
     for (std::size_t v = 0; v < neighbours_->size(); ++v) {
       for (int w : (*neighbours_)[v]) {
@@ -228,6 +233,7 @@ class Placement {
 
   // Hops from node to every placed neighbour of v except `skip`, straight from the neighbour list.
   long hopsExcept(int v, std::uint32_t node, int skip) const {
+    *steps_ += (*neighbours_)[v].size();
     long hops = 0;
     for (int w : (*neighbours_)[v]) {
       if (w != skip && nodeOf_[w] != kUnplaced) hops += hypercubeHops(node, nodeOf_[w]);
@@ -248,6 +254,7 @@ class Placement {
   }
 
   void addHopsToNeighbours(int v, std::uint32_t node, int sign) {
+    *steps_ += (*neighbours_)[v].size() * nodes_;
     for (int w : (*neighbours_)[v]) {
       int* row = &hopsFrom(w, 0);
       for (std::uint32_t x = 0; x < nodes_; ++x) row[x] += sign * hypercubeHops(x, node);
@@ -255,6 +262,7 @@ class Placement {
   }
 
   const std::vector<std::vector<int>>* neighbours_;  // a pointer so placements can be copied
+  std::uint64_t* steps_;
   std::uint32_t nodes_;
   std::vector<std::uint32_t> nodeOf_;
   std::vector<int> vertexAt_;
@@ -296,7 +304,7 @@ std::vector<std::uint32_t> grayCodeGridMapping(int rows, int columns) {
   return mapping;
 }
 
-std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph) {
+std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph, std::uint64_t* steps) {
   requireEdgesInside(graph, "mapToHypercube");
   if (graph.vertices > kMaxMappedVertices) {
     throw std::invalid_argument("mapToHypercube: " + std::to_string(graph.vertices) + " vertices; at most " +
@@ -315,10 +323,11 @@ std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph) {
   const int starts = static_cast<int>(
       std::clamp(kGreedyStartBudget / (graph.vertices * nodes), 1L, static_cast<long>(graph.vertices)));
 
-  Placement best(neighbours, dimension);
+  std::uint64_t counted = 0;
+  Placement best(neighbours, dimension, &counted);
   long bestHops = std::numeric_limits<long>::max();
   for (int s = 0; s < starts && bestHops > best.edgeCount(); ++s) {
-    Placement placement(neighbours, dimension);
+    Placement placement(neighbours, dimension, &counted);
     placement.placeGreedily(order[s]);
     placement.improveBySwaps();
     const long hops = placement.totalHops();
@@ -327,11 +336,15 @@ std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph) {
       best = placement;
     }
   }
-  if (bestHops == best.edgeCount()) return best.nodes();
+  if (bestHops == best.edgeCount()) {
+    if (steps) *steps = counted;
+    return best.nodes();
+  }
   Placement annealed = best;
   annealed.anneal(kAnnealingSeed, kAnnealingMovesPerVertex * graph.vertices);
   annealed.improveBySwaps();
   if (annealed.totalHops() < bestHops) best = annealed;
+  if (steps) *steps = counted;
   return best.nodes();
 }
 

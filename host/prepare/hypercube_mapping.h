@@ -46,8 +46,8 @@ inline constexpr int kMaxMappedVertices = 1024;
 // cube, d = hypercubeDimension(vertices): injective, every node < 2^d, deterministic. Greedy placement
 // followed by swap/move improvement; meant for the machine's sizes (up to a few hundred regions).
 // Throws std::invalid_argument when an edge names a vertex outside [0, vertices), vertices < 0, or
-// vertices > 1024.
-std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph);
+// vertices > 1024. steps, if given: the nodes' hops weighed for a vertex on the way (the host's work).
+std::vector<std::uint32_t> mapToHypercube(const AdjacencyGraph& graph, std::uint64_t* steps = nullptr);
 
 // Mean and max hops over the graph's edges (both 0 without edges). Throws std::invalid_argument when the
 // mapping does not have one node per vertex or an edge names a vertex outside the graph.

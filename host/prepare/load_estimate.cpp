@@ -79,7 +79,7 @@ LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, cons
   parallelFor(windowRows, [&](int wy) {
     LoadSample& row = rows[std::size_t(wy)];
     core::DiscardContributions colours;
-    core::TraceCounters counters;
+    core::TraceCounters& counters = row.traced;
     core::RayTreeScratch scratch;
     auto record = [&](const core::TracedRay& ray, double tEnd, std::uint64_t work) {
       ++row.raysTraced;
@@ -112,6 +112,7 @@ LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, cons
     sample.segments.insert(sample.segments.end(), row.segments.begin(), row.segments.end());
     sample.raysTraced += row.raysTraced;
     sample.pixelsSampled += row.pixelsSampled;
+    sample.traced += row.traced;
   }
   if (metric == LoadMetric::Cost && !sample.segments.empty()) {
     // A ray counts one, plus its work relative to the mean ray's: every piece of it costs a message and a
@@ -123,6 +124,15 @@ LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, cons
     for (ScreenSegment& s : sample.segments) s.weight = 1 + kWorkShare * s.weight / mean;
   }
   return sample;
+}
+
+int subsampleWindowFor(int samplesX, int samplesY, int processors) {
+  // Measured on the emulated iPSC/1, balls 2 at 128x128 on 32 processors (benchmarks/host_time.sh):
+  constexpr double kHostShare = 2.0;   // h: the sub-sample and its BSP per sampled pixel, against T1's per pixel
+  constexpr double kCoarseness = 1.2;  // c: the busiest region's excess per unit of w sqrt(P / S)
+  const double samples = double(samplesX) * samplesY;
+  const double w = std::cbrt(2 * kHostShare / kCoarseness * std::sqrt(double(processors) * samples));
+  return std::clamp(int(std::lround(w)), 1, std::max(1, std::min(samplesX, samplesY)));
 }
 
 double estimatedTotalRays(const LoadSample& sample, const core::View& view) {

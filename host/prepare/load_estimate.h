@@ -7,6 +7,7 @@
 
 #include "core/bvh.h"
 #include "core/scene.h"
+#include "core/trace_stats.h"
 #include "core/view.h"
 #include "core/whitted.h"
 #include "host/machine/machine_settings.h"
@@ -32,7 +33,17 @@ struct LoadSample {
   double raysPerSegment = 1;  // w * w: how many rays one sub-sampled ray represents
   std::uint64_t raysTraced = 0;
   std::uint64_t pixelsSampled = 0;  // one per window
+  core::TraceCounters traced;       // the sub-sampled rays' tests and BVH steps, by kind (the host's work)
 };
+
+// 3.7.1: "the choice of a good sub-sampling ... must depend on the image resolution". The window minimising
+// a model of the end-to-end time on `processors` with their own CPUs (benchmarks/results/host_time.md): the
+// host pays about h T1 / w^2 for the sub-sample and its BSP (T1 the one-processor time, h measured near 2
+// on the emulated iPSC/1), while the busiest region's excess over T1 / P grows as the estimate coarsens,
+// about c w sqrt(P / S) of it for S samples (c measured near 1.2). Their sum is least at
+// w = cbrt(2 h / c sqrt(P S)): 13 for 128x128 on 32 processors, 21 for 512x512. At least 1, at most the
+// screen's shorter side. What does not depend on w (pruning, mapping) does not move it.
+int subsampleWindowFor(int samplesX, int samplesY, int processors);
 
 // lightRaysWhereTheyStart: with light cones or pyramids (3.7.2) a light ray is processed only where it
 // starts, so it weighs on that point of the screen instead of along its path. sceneBounds: where the

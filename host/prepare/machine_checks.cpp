@@ -40,7 +40,8 @@ void requireMachineFits(const MachineSettings& machine, const core::View& view) 
                     machine.rows, machine.columns, kMaxMappedVertices, processors));
   if (machine.queueCapacity && *machine.queueCapacity < 1)
     throw std::invalid_argument("--queue-capacity must be at least 1");
-  if (machine.subsampleWindow < 1) throw std::invalid_argument("--subsample must be at least 1");
+  if (machine.subsampleWindow < 1 && machine.subsampleWindow != kAutoWindow)
+    throw std::invalid_argument("--subsample must be at least 1, or auto");
 }
 
 std::pair<int, int> defaultProcessorGrid(const core::View& view) {

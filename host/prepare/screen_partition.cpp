@@ -25,6 +25,7 @@ std::vector<int> evenCuts(int samples, int parts) {
 struct Areas {
   std::vector<node::SampleRect> areas;
   Balance balance;
+  std::uint64_t piecesWeighed = 0;  // the BSP's work
 };
 
 Areas uniformGrid(const core::View& view, const MachineSettings& machine) {
@@ -34,9 +35,10 @@ Areas uniformGrid(const core::View& view, const MachineSettings& machine) {
 }
 
 Areas equalLoads(const core::View& view, const LoadSample& load, const MachineSettings& machine) {
-  return {bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
-                       machine.loadMetric),
-          Balance::Bsp};
+  Areas made{{}, Balance::Bsp};
+  made.areas = bspPartition(view.samplesX(), view.samplesY(), machine.rows * machine.columns, load,
+                            machine.loadMetric, 0, &made.piecesWeighed);
+  return made;
 }
 
 // The partition of these areas, with what the sub-sample puts in each.
@@ -44,7 +46,7 @@ ScreenPartition madeOf(Areas made, AreaEstimates estimates, const core::View& vi
                        const MachineSettings& machine) {
   const int gridColumns = made.balance == Balance::Uniform ? machine.columns : 0;
   return {node::RegionMap(std::move(made.areas), node::ScreenLines(view), gridColumns), made.balance,
-          std::nullopt, std::move(estimates)};
+          std::nullopt, std::move(estimates), made.piecesWeighed};
 }
 
 }  // namespace
@@ -77,9 +79,11 @@ ScreenPartition partitionScreen(const core::View& view, const LoadSample& load,
   const PartitionForecast forecast{cores, estimatedSpan(balancedLoads.loads, cores),
                                    estimatedSpan(gridLoads.loads, cores)};
   const bool gridWins = forecast.uniformSpan < forecast.bspSpan * (1 - kSpansEqualWithin);
+  const std::uint64_t piecesWeighed = balanced.piecesWeighed;
   ScreenPartition made = madeOf(gridWins ? std::move(grid) : std::move(balanced),
                                 gridWins ? std::move(gridLoads) : std::move(balancedLoads), view, machine);
   made.forecast = forecast;
+  made.piecesWeighed = piecesWeighed;
   return made;
 }
 

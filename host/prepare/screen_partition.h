@@ -22,6 +22,7 @@ struct ScreenPartition {
   Balance balance = Balance::Bsp;             // the partition made: Uniform or Bsp
   std::optional<PartitionForecast> forecast;  // what chose it, when Auto had both to choose from
   AreaEstimates estimates;                    // the sub-sample's in each area (and the forecast's loads)
+  std::uint64_t piecesWeighed = 0;            // the BSP's work, made or only forecast (HostWork)
 };
 
 // The estimated span of areas whose loads are `loads`, on `cores` cores.

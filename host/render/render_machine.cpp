@@ -37,6 +37,7 @@ struct HypercubeEmbedding {
   Dilation dilation;
   std::size_t adjacencyEdges = 0;
   double seconds = 0;
+  std::uint64_t steps = 0;  // the host's work (HostWork::mappingSteps): one per region for the Gray code
 };
 
 HypercubeEmbedding embedInHypercube(const node::RegionMap& regions, const MachineSettings& machine) {
@@ -48,9 +49,12 @@ HypercubeEmbedding embedInHypercube(const node::RegionMap& regions, const Machin
       if (n > p) graph.edges.emplace_back(p, n);
   HypercubeEmbedding out;
   out.adjacencyEdges = graph.edges.size();
-  out.nodeOfProcessor = machine.balance == Balance::Uniform
-                            ? grayCodeGridMapping(machine.rows, machine.columns)
-                            : mapToHypercube(graph);
+  if (machine.balance == Balance::Uniform) {
+    out.nodeOfProcessor = grayCodeGridMapping(machine.rows, machine.columns);
+    out.steps = out.nodeOfProcessor.size();
+  } else {
+    out.nodeOfProcessor = mapToHypercube(graph, &out.steps);
+  }
   out.dilation = dilationOf(graph, out.nodeOfProcessor);
   out.seconds = secondsSince(start);
   return out;
@@ -63,6 +67,7 @@ void recordEmbedding(HypercubeEmbedding embedding, MachineReport& out) {
   out.hypercubeDimension = embedding.dilation.dimension;
   out.adjacencyEdges = embedding.adjacencyEdges;
   out.preprocessing.mapping = embedding.seconds;
+  out.hostWork.mappingSteps = embedding.steps;
 }
 
 // The cores the processors share, for Balance::Auto: one each where every processor has a CPU of its own (the
@@ -121,7 +126,26 @@ struct HostPreparation {
   node::MachineContext context;
   std::vector<node::NodeSetup> setups;
   AreaEstimates estimates;  // what the sub-sample puts in each region (weighed while partitioning)
+  HostWork work;            // what it took, counted (the mapping's steps come later)
 };
+
+// The host's work as counted (HostWork): the sub-sampled rays as a node counts its own (each taken up,
+// spawned and finished once), unless the grid was asked for, which needs no estimate (the paper's first
+// machine, 3.1: raycube samples it only for its reports); the BSP's pieces; the pruning's objects against
+// every region, and with light volumes against every region's and the rear sources' volume for each light.
+HostWork hostWorkOf(const LoadSample& load, const ScreenPartition& partition, const core::Scene& scene,
+                    bool lightVolumes, Balance asked) {
+  HostWork work;
+  if (asked != Balance::Uniform) {
+    work.sampling.processed = load.traced;
+    work.sampling.spawned = work.sampling.finished = load.traced.rays;
+  }
+  work.piecesWeighed = partition.piecesWeighed;
+  const std::uint64_t objects = scene.objects.size(), lights = lightVolumes ? scene.lights.size() : 0;
+  const std::uint64_t regions = std::uint64_t(partition.regions.processors());
+  work.regionTests = objects * (regions * (1 + lights) + lights);
+  return work;
+}
 
 // The time since the last lap, and a new lap.
 class Laps {
@@ -179,6 +203,7 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
                                   lightVolumes, sceneBounds);
   seconds.sampling = laps.next();
   ScreenPartition partition = partitionScreen(view, load, machine, coresSharedBy(machine));
+  HostWork work = hostWorkOf(load, partition, shading.scene(), lightVolumes, machine.balance);
   node::MachineContext context{
       view, settings.shading, std::move(partition.regions), std::move(sceneBounds), {}};
   context.fifoFull = fifoFullFor(machine);
@@ -198,8 +223,8 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
       setup.sceneTree = wholeScene;
     }
   seconds.pruning = laps.next();
-  return {std::move(load),    partition.balance, partition.forecast,
-          std::move(context), std::move(setups), std::move(partition.estimates)};
+  return {std::move(load),    partition.balance,    partition.forecast,          std::move(context),
+          std::move(setups), std::move(partition.estimates), work};
 }
 
 // When the run started, when the engine was given the processors, and when the synthesis phase started
@@ -221,6 +246,7 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
   const MachineProgress work(host.estimates.expected);
   EngineHooks hooks;
   hooks.host = &accumulator;
+  hooks.hostWork = &host.work;
   hooks.synthesisStarts = [&] {
     clock.synthesis = Clock::now();
     progress.phase("tracing", work.workOf({}).expected);
@@ -245,6 +271,9 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   SynthesisClock clock{Clock::now(), Clock::now(), Clock::now()};
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);
+  if (machine.subsampleWindow == kAutoWindow)
+    machine.subsampleWindow =
+        subsampleWindowFor(view.samplesX(), view.samplesY(), machine.rows * machine.columns);
   requireMachineFits(machine, view);  // phase 1
   Progress progress("partitioning", 0, settings.progress);
   MachineReport local;
@@ -259,8 +288,11 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   // the report wants it.
   std::future<HypercubeEmbedding> embedding;
   std::function<void()> alongsideSynthesis = [] {};
-  if (machine.emulate)
+  out.hostWork = host.work;
+  if (machine.emulate) {
     recordEmbedding(embedInHypercube(host.context.regions, out.settings), out);
+    host.work.mappingSteps = out.hostWork.mappingSteps;
+  }
   else if (machine.mapHypercube)
     alongsideSynthesis = [&] {
       embedding = std::async(std::launch::async,

@@ -63,6 +63,12 @@ std::string emulatedTable(const MachineReport& report) {
       "messages/s)\n",
       run.platform, run.makespan, run.rayMessages, hostBytes, 100 * blockedShare(report), run.wallSeconds,
       run.wallSeconds > 0 ? double(run.rayMessages) / run.wallSeconds : 0.0);
+  const HostPreprocessing& pre = run.preprocessing;
+  text += fmt::format(
+      "  host's preprocessing {:.6f} simulated s (sub-sampling {:.3f}, partitioning {:.3f}, pruning {:.3f}, "
+      "mapping {:.3f}, {} setups of {} bytes sent in {:.3f}); end to end {:.6f} simulated s\n",
+      pre.seconds, pre.sampling, pre.partitioning, pre.pruning, pre.mapping, pre.messages, pre.bytes,
+      pre.transfer, run.endToEnd());
   text += "  blocked share by tenth of the makespan:";
   for (double share : blockedShareByTenth(report)) text += fmt::format(" {:.0f}%", 100 * share);
   text += "\n  node  computing  forwarding    blocked       idle   (simulated seconds)\n";
@@ -87,8 +93,28 @@ nlohmann::json emulatedJson(const MachineReport& report) {
                      {"to", l.to == kHostNode ? nlohmann::json("host") : nlohmann::json(l.to)},
                      {"messages", l.messages},
                      {"bytes", l.bytes}});
+  const HostPreprocessing& pre = run.preprocessing;
+  const HostWork& work = report.hostWork;
+  const nlohmann::json preprocessing{
+      {"samplingSeconds", pre.sampling},
+      {"partitioningSeconds", pre.partitioning},
+      {"pruningSeconds", pre.pruning},
+      {"mappingSeconds", pre.mapping},
+      {"transferSeconds", pre.transfer},
+      {"setupMessages", pre.messages},
+      {"setupBytes", pre.bytes},
+      {"work",
+       {{"sampledRays", work.sampling.processed.totalRays()},
+        {"samplingTests", work.sampling.processed.intersectionTests},
+        {"samplingBoxTests", work.sampling.processed.boxTests},
+        {"piecesWeighed", work.piecesWeighed},
+        {"regionTests", work.regionTests},
+        {"mappingSteps", work.mappingSteps}}}};
   return {{"platform", run.platform},
           {"makespanSeconds", run.makespan},
+          {"preprocessingSeconds", pre.seconds},
+          {"endToEndSeconds", run.endToEnd()},
+          {"preprocessing", preprocessing},
           {"rayMessages", run.rayMessages},
           {"blockedShare", blockedShare(report)},
           {"blockedShareByTenth", blockedShareByTenth(report)},

@@ -24,6 +24,11 @@ struct ScalingPoint {
   // --fifo-full lock: the simulated instant the run deadlocked (host/machine/deadlock.h), -1 when it
   // completed; makespan, speedup and efficiency are then NaN.
   double deadlockAt = -1;
+  // The host's preparation before the synthesis (HostPreprocessing), and both together: the end-to-end
+  // time, its speedup and efficiency against the smallest count's synthesis alone (one processor needs no
+  // partition: its time is the sequential work).
+  double preprocessing = 0, endToEnd = 0;
+  double endToEndSpeedup = 0, endToEndEfficiency = 0;
 };
 
 // The grid closest to square with rows x columns == processors (rows <= columns).

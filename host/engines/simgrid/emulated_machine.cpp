@@ -343,6 +343,75 @@ void simulate(SimulationInput in, PipeWriter& out) {
   writeEmulatedResults(out, reports, run, deadlock);
 }
 
+// ---- The host's preparation (3.2 steps 1-2, 3.7.1), in a simulation of its own: the synthesis starts only
+// once every node has its setup (3.2 step 3), so the two never overlap, and the synthesis is simulated from
+// its own zero, the same to the last digit whether or not the host pays.
+
+// Each processor's setup as the host sends it: the wire format the MPI engine sends (its region database,
+// its cells' object lists and boxes, its light sources, and the shared context), its real size in bytes.
+std::vector<std::uint64_t> setupBytesOf(const node::MachineContext& context,
+                                        const std::vector<node::NodeSetup>& setups) {
+  std::vector<std::uint64_t> bytes;
+  for (const node::NodeSetup& setup : setups)
+    bytes.push_back(encodeJob(JobSettings{}, context, std::span(&setup, 1)).size());
+  return bytes;
+}
+
+struct HostInput {
+  const EmulatedPlatform& platform;
+  const HostWork& work;
+  const std::vector<std::uint64_t>& setupBytes;  // per processor
+  const std::vector<std::uint32_t>& cubeNode;
+};
+
+// The host actor: each phase's counted work on the manager's CPU, then each node's setup, one after the
+// other, each send paying the manager's CPU its overhead and the node's its receipt; the preparation ends
+// when the last node has taken its setup.
+HostPreprocessing simulateHostPreprocessing(const HostInput& in) {
+  std::vector<std::string> args = simulationArguments();
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  int argc = int(args.size());
+  s4u::Engine engine(&argc, argv.data());
+  loadPlatform(engine, in.platform);
+  s4u::Host* manager = hostNamed(queues::kCubeManagerHost, in.platform);
+  const double scale = speedScale(in.platform, *hostNamed(hostName(0), in.platform));
+  const CostTable& costs = in.platform.costs;
+  HostPreprocessing pre;
+  static int setupToken = 0;  // SimGrid carries a pointer; the size on the wire is the setup's
+  double transferStart = 0;
+  for (std::size_t p = 0; p < in.cubeNode.size(); ++p) {
+    s4u::Host* node = hostNamed(hostName(in.cubeNode[p]), in.platform);
+    s4u::Actor::create("setup-of-" + std::to_string(p), node, [&, p, node] {
+      s4u::Mailbox::by_name("setup-" + std::to_string(p))->get<int>();
+      if (costs.receiveSeconds > 0) s4u::this_actor::execute(costs.receiveSeconds * node->get_speed());
+    });
+  }
+  s4u::Actor::create("host", manager, [&] {
+    auto phase = [&](double flops, double& seconds) {
+      const double start = s4u::Engine::get_clock();
+      if (flops > 0) s4u::this_actor::execute(flops * scale);
+      seconds = s4u::Engine::get_clock() - start;
+    };
+    phase(costs.samplingFlopsOf(in.work), pre.sampling);
+    phase(costs.partitioningFlopsOf(in.work), pre.partitioning);
+    phase(costs.pruningFlopsOf(in.work), pre.pruning);
+    phase(costs.mappingFlopsOf(in.work), pre.mapping);
+    transferStart = s4u::Engine::get_clock();
+    for (std::size_t p = 0; p < in.cubeNode.size(); ++p) {
+      if (costs.sendSeconds > 0) s4u::this_actor::execute(costs.sendSeconds * manager->get_speed());
+      s4u::Mailbox::by_name("setup-" + std::to_string(p))->put(&setupToken, in.setupBytes[p]);
+      ++pre.messages;
+      pre.bytes += in.setupBytes[p];
+    }
+  });
+  engine.run();
+  pre.seconds = s4u::Engine::get_clock();  // the last node has taken its setup
+  pre.transfer = pre.seconds - transferStart;
+  return pre;
+}
+
 // The parent's side: the start of synthesis, contributions to the host's sink and progress as they come,
 // then the reports.
 MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
@@ -363,11 +432,11 @@ MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
   }
 }
 
-}  // namespace
-
-template <class Real>
-MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
-                                      std::vector<node::NodeSetup> setups, const EngineHooks& hooks) {
+// Runs simulate(out) in a child process (SimGrid allows one simulation per process) and read(in) on its
+// results in this one.
+template <class Result>
+Result inChildProcess(const std::function<void(PipeWriter&)>& simulate,
+                      const std::function<Result(PipeReader&)>& read) {
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error("cannot create a pipe for the simulation");
   std::fflush(nullptr);
@@ -377,7 +446,7 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
     ::close(fds[0]);
     PipeWriter out(fds[1]);
     try {
-      simulate<Real>(SimulationInput{context, setups, platform_, queueCapacity_, cubeNode_}, out);
+      simulate(out);
     } catch (const std::exception& e) {
       out.value(Record::Failure);
       out.string(e.what());
@@ -388,10 +457,10 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
   }
   ::close(fds[1]);
   PipeReader in(fds[0]);
-  std::optional<MachineRun> run;
+  std::optional<Result> run;
   std::string failure;
   try {
-    run = receiveResults(in, hooks);
+    run = read(in);
   } catch (const std::exception& e) {
     failure = e.what();
   }
@@ -405,6 +474,35 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
     throw std::runtime_error("emulated machine: " + failure);
   }
   return std::move(*run);
+}
+
+}  // namespace
+
+template <class Real>
+MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
+                                      std::vector<node::NodeSetup> setups, const EngineHooks& hooks) {
+  HostPreprocessing pre;
+  if (hooks.hostWork) {
+    const std::vector<std::uint64_t> bytes = setupBytesOf(context, setups);
+    const HostInput input{platform_, *hooks.hostWork, bytes, cubeNode_};
+    pre = inChildProcess<HostPreprocessing>(
+        [&](PipeWriter& out) {
+          const HostPreprocessing simulated = simulateHostPreprocessing(input);
+          out.value(Record::Reports);
+          out.value(simulated);
+        },
+        [](PipeReader& in) {
+          if (in.value<Record>() == Record::Failure) throw std::runtime_error(in.string());
+          return in.value<HostPreprocessing>();
+        });
+  }
+  MachineRun run = inChildProcess<MachineRun>(
+      [&](PipeWriter& out) {
+        simulate<Real>(SimulationInput{context, setups, platform_, queueCapacity_, cubeNode_}, out);
+      },
+      [&](PipeReader& in) { return receiveResults(in, hooks); });
+  run.emulated->preprocessing = pre;
+  return run;
 }
 
 template class EmulatedMachine<float>;

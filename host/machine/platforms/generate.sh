@@ -44,7 +44,8 @@ hosts() {
     printf "    <host id=\"manager\" speed=\"%s\"/>\n", speed }'
 }
 
-# Every node's own link to the manager (the iPSC's eighth port), one way: the manager only receives.
+# Every node's own link to the manager (the iPSC's eighth port), both ways: the manager sends each node its
+# setup before the synthesis (3.2 step 1) and receives the nodes' contributions during it.
 manager_links() {
   awk -v n="$1" -v bw="$2" -v lat="$3" 'BEGIN {
     for (i = 0; i < n; ++i)
@@ -53,7 +54,7 @@ manager_links() {
 manager_routes() {
   awk -v n="$1" 'BEGIN {
     for (i = 0; i < n; ++i)
-      printf "    <route src=\"node-%d\" dst=\"manager\" symmetrical=\"NO\"><link_ctn id=\"node-%d:manager\"/></route>\n", i, i }'
+      printf "    <route src=\"node-%d\" dst=\"manager\" symmetrical=\"YES\"><link_ctn id=\"node-%d:manager\"/></route>\n", i, i }'
 }
 
 {
