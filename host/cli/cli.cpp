@@ -15,9 +15,10 @@ int runCommandLine(int argc, char** argv) {
   app.require_subcommand(1);
   // In the order --help lists them.
   const std::vector<std::pair<const char*, RunCommand>> commands{
-      {"render", addRenderCommand(app)},     {"compare", addCompareCommand(app)},
-      {"tradeoff", addTradeoffCommand(app)}, {"scaling", addScalingCommand(app)},
-      {"plot", addPlotCommand(app)},         {"spd", addSpdCommand(app)}};
+      {"render", addRenderCommand(app)},      {"compare", addCompareCommand(app)},
+      {"tradeoff", addTradeoffCommand(app)},  {"scaling", addScalingCommand(app)},
+      {"plot", addPlotCommand(app)},          {"spd", addSpdCommand(app)},
+      {"calibrate", addCalibrateCommand(app)}};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -24,5 +24,6 @@ RunCommand addTradeoffCommand(CLI::App& app);
 RunCommand addScalingCommand(CLI::App& app);
 RunCommand addPlotCommand(CLI::App& app);
 RunCommand addSpdCommand(CLI::App& app);
+RunCommand addCalibrateCommand(CLI::App& app);
 
 }  // namespace raycube::host

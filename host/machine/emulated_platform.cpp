@@ -128,6 +128,13 @@ void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platfor
           where, key, value, {{"lock", node::FifoFull::Lock}, {"overflow", node::FifoFull::Overflow}});
       continue;
     }
+    if (key == "unit") {
+      if (value != "flop-equivalents" && value != "seconds")
+        throw std::runtime_error(
+            fmt::format("{}: unit is flop-equivalents or seconds, not '{}'", where, value));
+      platform.computeUnit = value == "seconds" ? ComputeUnit::Seconds : ComputeUnit::FlopEquivalents;
+      continue;
+    }
     double number_ = 0;
     try {
       std::size_t used = 0;
@@ -138,6 +145,8 @@ void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platfor
       throw std::runtime_error(fmt::format("{}: '{}' is not a finite number >= 0", where, value));
     }
     if (key == "nodeSpeed") {
+      if (platform.computeUnit == ComputeUnit::Seconds)
+        throw std::runtime_error(fmt::format("{}: nodeSpeed has no meaning for costs in seconds", where));
       if (number_ <= 0) throw std::runtime_error(fmt::format("{}: nodeSpeed must be positive", where));
       platform.nodeSpeed = number_;
     } else if (const auto f = fields.find(key); f != fields.end()) {

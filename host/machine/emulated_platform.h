@@ -16,8 +16,10 @@ namespace raycube::host {
 
 // What each operation a node counts costs. Computation in flop-equivalents (hand counts of the floating-point
 // operations in core/ and node/): only their ratios matter, the platform's node speed turns them into
-// seconds. Messages in seconds of the CPU that pays them (the iPSC's were software overheads measured on the
-// machine, not flops): the sender's, the receiver's, and a relaying node's under store and forward.
+// seconds; or, with a cost file's `unit seconds` line (what `raycube calibrate` writes), in seconds of a node
+// of the platform, measured. Messages in seconds of the CPU that pays them (the iPSC's were software
+// overheads measured on the machine, not flops): the sender's, the receiver's, and a relaying node's under
+// store and forward.
 struct CostTable {
   double sphereTest = 25;     // oc = o - c, b = oc.d, c = oc.oc - r^2, b^2 - c, sqrt, two roots
   double coneTest = 60;       // a quadric in the cone's frame plus two caps
@@ -39,9 +41,9 @@ struct CostTable {
                             // margins, min/max, compares) or against a light volume
   double mappingStep = 2;   // the embedding: one node's hops to a vertex's neighbours weighed (popcount, add)
 
-  // What a node's counted work costs: its computation in flop-equivalents, its messages in seconds (each
-  // linear: a difference of two calls is the cost of the work between them). A token visit is a message
-  // received and one sent (3.6).
+  // What a node's counted work costs: its computation in flop-equivalents (or seconds, ComputeUnit), its
+  // messages in seconds (each linear: a difference of two calls is the cost of the work between them). A
+  // token visit is a message received and one sent (3.6).
   double flopsOf(const node::NodeStats& stats) const;
   double messageSecondsOf(const node::NodeStats& stats) const;
   // What the host's work costs, phase by phase, in flop-equivalents.
@@ -54,6 +56,9 @@ struct CostTable {
 
 using queues::Routing;
 
+// What a cost table's computation costs are in: flop-equivalents (scaled by the node speed) or seconds.
+enum class ComputeUnit : std::uint8_t { FlopEquivalents, Seconds };
+
 // A machine is data: a SimGrid platform (hosts node-0 ... node-<2^d - 1> and manager, links, routes) and a
 // cost table. The built-in ones ship as host/machine/platforms/<name>.xml and <name>.costs.
 struct EmulatedPlatform {
@@ -64,6 +69,7 @@ struct EmulatedPlatform {
   // synthesis task locked (3.5.2), a modern cluster's may overflow into memory.
   node::FifoFull fifoFull = node::FifoFull::Overflow;
   std::optional<double> nodeSpeed;  // a cost table's nodeSpeed (flop-equivalents/s): replaces the platform's
+  ComputeUnit computeUnit = ComputeUnit::FlopEquivalents;  // a cost table's `unit`
   CostTable costs;
 };
 
@@ -78,6 +84,8 @@ EmulatedPlatform builtinPlatform(std::string_view name);
 // --platform FILE.xml [--costs FILE]: a SimGrid platform and a cost table of "name value" lines (any
 // CostTable field, plus nodeSpeed, routing store-and-forward|direct and fifoFull lock|overflow). Errors name
 // file:line. The built-in platforms come this way too.
+// CostTable field, plus nodeSpeed, unit flop-equivalents|seconds and routing store-and-forward|direct).
+// Errors name file:line. The built-in platforms come this way too.
 EmulatedPlatform userPlatform(const std::filesystem::path& platformFile, const std::filesystem::path& costs);
 void applyCostFile(const std::filesystem::path& costs, EmulatedPlatform& platform);
 

@@ -1,6 +1,8 @@
 #include "host/engines/mpi/mpi_session.h"
 
 #include <mpi.h>
+#include <sched.h>
+#include <sys/sysinfo.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -18,6 +20,22 @@ bool startedByLauncher() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
     if (std::getenv(name) != nullptr) return true;
   return false;
+}
+
+// Open MPI binds each rank to one core when it starts 2 processes or fewer (to a socket beyond): with
+// `mpirun -np 2`, rank 1 would run every processor thread and its communication thread on one core of the
+// machine, and the host on the other. raycube's ranks run several threads each, so a binding Open MPI chose
+// by itself is undone (as `--bind-to none` does); one the user asked for (`--bind-to ...`, which Open MPI
+// passes on as OMPI_MCA_hwloc_base_binding_policy) is kept.
+void undoDefaultBinding() {
+  if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr ||
+      std::getenv("OMPI_MCA_hwloc_base_binding_policy") != nullptr)
+    return;
+  cpu_set_t every;
+  CPU_ZERO(&every);
+  for (int cpu = 0; cpu < get_nprocs_conf() && cpu < CPU_SETSIZE; ++cpu) CPU_SET(cpu, &every);
+  sched_setaffinity(0, sizeof(every),
+                    &every);  // the kernel keeps what a cgroup allows; failing, the binding stays
 }
 
 constexpr const char* kUsage =
@@ -62,6 +80,7 @@ int runUnderMpi(int argc, char** argv, const std::function<int()>& hostMain) {
     std::cerr << "raycube: --transport mpi needs an MPI launcher: " << kUsage << "\n";
     return 2;
   }
+  undoDefaultBinding();
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
   int status = 2;

@@ -120,8 +120,9 @@ void loadPlatform(s4u::Engine& engine, const EmulatedPlatform& platform) {
 }
 
 // A cost table's nodeSpeed sets node-0's speed, the others keeping their ratio to it: every charge is scaled
-// (by exactly 1 without one).
+// (by exactly 1 without one). Costs in seconds are node-0's seconds: node-0's flops per second.
 double speedScale(const EmulatedPlatform& platform, const s4u::Host& node0) {
+  if (platform.computeUnit == ComputeUnit::Seconds) return node0.get_speed();
   return platform.nodeSpeed ? node0.get_speed() / *platform.nodeSpeed : 1.0;
 }
 
