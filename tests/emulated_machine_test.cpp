@@ -248,7 +248,6 @@ TEST(Scaling, NearSquareGrids) {
   EXPECT_EQ(nearSquareGrid(7), std::make_pair(1, 7));
 }
 
-
 // ---- The host pays for its work (issue 40): its preparation in simulated time, before the synthesis.
 
 // A platform written for a test: a manager and two nodes at 100 flop-equivalents per second, each node's link
@@ -269,8 +268,10 @@ std::filesystem::path twoNodeHostPlatform() {
         "    <route src=\"node-{0}\" dst=\"manager\" symmetrical=\"YES\"><link_ctn id=\"node-{0}:manager\"/>"
         "</route>\n",
         n);
-  out << "    <route src=\"node-0\" dst=\"node-1\" symmetrical=\"NO\"><link_ctn id=\"node-0:node-1\"/></route>\n"
-         "    <route src=\"node-1\" dst=\"node-0\" symmetrical=\"NO\"><link_ctn id=\"node-1:node-0\"/></route>\n"
+  out << "    <route src=\"node-0\" dst=\"node-1\" symmetrical=\"NO\"><link_ctn "
+         "id=\"node-0:node-1\"/></route>\n"
+         "    <route src=\"node-1\" dst=\"node-0\" symmetrical=\"NO\"><link_ctn "
+         "id=\"node-1:node-0\"/></route>\n"
          "  </zone>\n</platform>\n";
   return path;
 }
