@@ -486,16 +486,23 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
   if (hooks.hostWork) {
     const std::vector<std::uint64_t> bytes = setupBytesOf(context, setups);
     const HostInput input{platform_, *hooks.hostWork, bytes, cubeNode_};
-    pre = inChildProcess<HostPreprocessing>(
-        [&](PipeWriter& out) {
-          const HostPreprocessing simulated = simulateHostPreprocessing(input);
-          out.value(Record::Reports);
-          out.value(simulated);
-        },
-        [](PipeReader& in) {
-          if (in.value<Record>() == Record::Failure) throw std::runtime_error(in.string());
-          return in.value<HostPreprocessing>();
-        });
+    try {
+      pre = inChildProcess<HostPreprocessing>(
+          [&](PipeWriter& out) {
+            const HostPreprocessing simulated = simulateHostPreprocessing(input);
+            out.value(Record::Reports);
+            out.value(simulated);
+          },
+          [](PipeReader& in) {
+            if (in.value<Record>() == Record::Failure) throw std::runtime_error(in.string());
+            return in.value<HostPreprocessing>();
+          });
+    } catch (const std::runtime_error& e) {  // SimGrid aborts on a missing route
+      throw std::runtime_error(fmt::format(
+          "{} while the host sent the nodes their setups: {} needs a route from manager to every node "
+          "(symmetrical=\"YES\" on the nodes' routes to manager)",
+          e.what(), platform_.platformFile.string()));
+    }
   }
   MachineRun run = inChildProcess<MachineRun>(
       [&](PipeWriter& out) {
