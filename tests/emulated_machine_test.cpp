@@ -362,6 +362,25 @@ TEST(HostPreprocessing, IsDeterministicAndLeavesTheSynthesisAlone) {
   EXPECT_GT(uniform.emulated->preprocessing.pruning, 0);
 }
 
+// `raycube scaling` shows both: the synthesis (table 2's) and the end-to-end time with the host's
+// preparation, with the efficiency of each against the smallest count's synthesis.
+TEST(HostPreprocessing, TheScalingStudyShowsTheSynthesisAndTheEndToEndTime) {
+  const core::Scene scene = core::makeBalls(1);
+  MachineSettings m = emulated(1, 1);
+  const std::vector<ScalingPoint> points = scalingStudy(scene, settingsFor(16), m, {1, 4});
+  ASSERT_EQ(points.size(), 2u);
+  for (const ScalingPoint& p : points) {
+    EXPECT_GT(p.preprocessing, 0) << p.processors;
+    EXPECT_EQ(p.endToEnd, p.preprocessing + p.makespan) << p.processors;
+    EXPECT_DOUBLE_EQ(p.endToEndEfficiency,
+                     points[0].makespan * points[0].processors / p.endToEnd / p.processors);
+    EXPECT_LT(p.endToEndEfficiency, p.efficiency) << p.processors;
+  }
+  const std::string table = scalingTable(points, scene, settingsFor(16));
+  for (const char* column : {"simulated s", "efficiency", "host s", "end to end s", "e2e eff."})
+    EXPECT_NE(table.find(column), std::string::npos) << column;
+}
+
 // --subsample auto: the window of the least predicted end-to-end time grows with the processors and, slowly,
 // with the resolution (w = cbrt(2 h / c sqrt(P S))).
 TEST(HostPreprocessing, TheAutomaticWindowFollowsTheResolution) {
