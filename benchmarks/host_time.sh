@@ -6,7 +6,7 @@
 # efficiency of each against one processor's synthesis. Prints Markdown; nothing is timed on this host, so
 # the tables are the same on every machine.
 #
-#   benchmarks/host_time.sh [RAYCUBE] [PROCS] > benchmarks/results/host_time.md
+#   benchmarks/host_time.sh [RAYCUBE] [PROCS]    # the table of benchmarks/results/host_time.md
 set -euo pipefail
 raycube=${1:-build/release/raycube}
 procs=${2:-4x8}

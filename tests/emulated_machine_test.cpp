@@ -251,7 +251,6 @@ TEST(Scaling, NearSquareGrids) {
   EXPECT_EQ(nearSquareGrid(7), std::make_pair(1, 7));
 }
 
-
 // ---- The host pays for its work (issue 40): its preparation in simulated time, before the synthesis.
 
 // A platform written for a test: a manager and two nodes at 100 flop-equivalents per second, each node's link
@@ -272,8 +271,10 @@ std::filesystem::path twoNodeHostPlatform() {
         "    <route src=\"node-{0}\" dst=\"manager\" symmetrical=\"YES\"><link_ctn id=\"node-{0}:manager\"/>"
         "</route>\n",
         n);
-  out << "    <route src=\"node-0\" dst=\"node-1\" symmetrical=\"NO\"><link_ctn id=\"node-0:node-1\"/></route>\n"
-         "    <route src=\"node-1\" dst=\"node-0\" symmetrical=\"NO\"><link_ctn id=\"node-1:node-0\"/></route>\n"
+  out << "    <route src=\"node-0\" dst=\"node-1\" symmetrical=\"NO\"><link_ctn "
+         "id=\"node-0:node-1\"/></route>\n"
+         "    <route src=\"node-1\" dst=\"node-0\" symmetrical=\"NO\"><link_ctn "
+         "id=\"node-1:node-0\"/></route>\n"
          "  </zone>\n</platform>\n";
   return path;
 }
@@ -362,6 +363,25 @@ TEST(HostPreprocessing, IsDeterministicAndLeavesTheSynthesisAlone) {
   EXPECT_EQ(uniform.emulated->preprocessing.sampling, 0);
   EXPECT_EQ(uniform.emulated->preprocessing.partitioning, 0);
   EXPECT_GT(uniform.emulated->preprocessing.pruning, 0);
+}
+
+// `raycube scaling` shows both: the synthesis (table 2's) and the end-to-end time with the host's
+// preparation, with the efficiency of each against the smallest count's synthesis.
+TEST(HostPreprocessing, TheScalingStudyShowsTheSynthesisAndTheEndToEndTime) {
+  const core::Scene scene = core::makeBalls(1);
+  MachineSettings m = emulated(1, 1);
+  const std::vector<ScalingPoint> points = scalingStudy(scene, settingsFor(16), m, {1, 4});
+  ASSERT_EQ(points.size(), 2u);
+  for (const ScalingPoint& p : points) {
+    EXPECT_GT(p.preprocessing, 0) << p.processors;
+    EXPECT_EQ(p.endToEnd, p.preprocessing + p.makespan) << p.processors;
+    EXPECT_DOUBLE_EQ(p.endToEndEfficiency,
+                     points[0].makespan * points[0].processors / p.endToEnd / p.processors);
+    EXPECT_LT(p.endToEndEfficiency, p.efficiency) << p.processors;
+  }
+  const std::string table = scalingTable(points, scene, settingsFor(16));
+  for (const char* column : {"simulated s", "efficiency", "host s", "end to end s", "e2e eff."})
+    EXPECT_NE(table.find(column), std::string::npos) << column;
 }
 
 // --subsample auto: the window of the least predicted end-to-end time grows with the processors and, slowly,

@@ -17,14 +17,14 @@ namespace {
 constexpr std::string_view kBuiltinPlatforms[] = {"ipsc1", "cluster"};
 
 std::map<std::string, double CostTable::*> costFields() {
-  return {{"sphereTest", &CostTable::sphereTest},    {"coneTest", &CostTable::coneTest},
-          {"polygonTest", &CostTable::polygonTest},  {"polygonVertex", &CostTable::polygonVertex},
-          {"patchTest", &CostTable::patchTest},      {"cellStep", &CostTable::cellStep},
-          {"raySegment", &CostTable::raySegment},    {"rayFinished", &CostTable::rayFinished},
-          {"raySpawned", &CostTable::raySpawned},    {"contribution", &CostTable::contribution},
-          {"sendSeconds", &CostTable::sendSeconds},  {"receiveSeconds", &CostTable::receiveSeconds},
-          {"relaySeconds", &CostTable::relaySeconds},  {"segmentClip", &CostTable::segmentClip},
-          {"regionTest", &CostTable::regionTest},    {"mappingStep", &CostTable::mappingStep}};
+  return {{"sphereTest", &CostTable::sphereTest},     {"coneTest", &CostTable::coneTest},
+          {"polygonTest", &CostTable::polygonTest},   {"polygonVertex", &CostTable::polygonVertex},
+          {"patchTest", &CostTable::patchTest},       {"cellStep", &CostTable::cellStep},
+          {"raySegment", &CostTable::raySegment},     {"rayFinished", &CostTable::rayFinished},
+          {"raySpawned", &CostTable::raySpawned},     {"contribution", &CostTable::contribution},
+          {"sendSeconds", &CostTable::sendSeconds},   {"receiveSeconds", &CostTable::receiveSeconds},
+          {"relaySeconds", &CostTable::relaySeconds}, {"segmentClip", &CostTable::segmentClip},
+          {"regionTest", &CostTable::regionTest},     {"mappingStep", &CostTable::mappingStep}};
 }
 
 // The message costs a cost table gave in flop-equivalents before they were seconds: what replaces each.

@@ -45,12 +45,12 @@ inline constexpr std::uint32_t kHostNode = UINT32_MAX;
 // the other; it ends when the last node has its setup. Table 2 leaves it out ("a few minutes").
 struct HostPreprocessing {
   double sampling = 0, partitioning = 0, pruning = 0, mapping = 0, transfer = 0;  // simulated seconds
-  double seconds = 0;  // all of it: the synthesis starts then
+  double seconds = 0;                     // all of it: the synthesis starts then
   std::uint64_t messages = 0, bytes = 0;  // the setups sent
 };
 struct EmulatedRun {
   std::string platform;
-  double makespan = 0;  // simulated seconds from the start of synthesis to the last contribution
+  double makespan = 0;              // simulated seconds from the start of synthesis to the last contribution
   HostPreprocessing preprocessing;  // before the synthesis
   double endToEnd() const { return preprocessing.seconds + makespan; }
   double nodeSpeed = 0;           // node-0's speed, flop-equivalents per second (what --fit scales)

@@ -128,7 +128,8 @@ LoadSample subsampleLoad(const core::Bvh& database, const core::View& view, cons
 
 int subsampleWindowFor(int samplesX, int samplesY, int processors) {
   // Measured on the emulated iPSC/1, balls 2 at 128x128 on 32 processors (benchmarks/host_time.sh):
-  constexpr double kHostShare = 2.0;   // h: the sub-sample and its BSP per sampled pixel, against T1's per pixel
+  constexpr double kHostShare =
+      2.0;  // h: the sub-sample and its BSP per sampled pixel, against T1's per pixel
   constexpr double kCoarseness = 1.2;  // c: the busiest region's excess per unit of w sqrt(P / S)
   const double samples = double(samplesX) * samplesY;
   const double w = std::cbrt(2 * kHostShare / kCoarseness * std::sqrt(double(processors) * samples));

@@ -130,19 +130,20 @@ struct HostPreparation {
 };
 
 // The host's work as counted (HostWork): the sub-sampled rays as a node counts its own (each taken up,
-// spawned and finished once), unless the grid was asked for, which needs no estimate (the paper's first
-// machine, 3.1: raycube samples it only for its reports); the BSP's pieces; the pruning's objects against
-// every region, and with light volumes against every region's and the rear sources' volume for each light.
+// spawned and finished once) and the BSP's pieces, where the partition needs them: not for the grid asked
+// for (the paper's first machine, 3.1) nor for one processor, which raycube samples only for its reports;
+// the pruning's objects against every region, and with light volumes against every region's and the rear
+// sources' volume for each light.
 HostWork hostWorkOf(const LoadSample& load, const ScreenPartition& partition, const core::Scene& scene,
                     bool lightVolumes, Balance asked) {
   HostWork work;
-  if (asked != Balance::Uniform) {
+  const std::uint64_t regions = std::uint64_t(partition.regions.processors());
+  if (asked != Balance::Uniform && regions > 1) {
     work.sampling.processed = load.traced;
     work.sampling.spawned = work.sampling.finished = load.traced.rays;
+    work.piecesWeighed = partition.piecesWeighed;
   }
-  work.piecesWeighed = partition.piecesWeighed;
   const std::uint64_t objects = scene.objects.size(), lights = lightVolumes ? scene.lights.size() : 0;
-  const std::uint64_t regions = std::uint64_t(partition.regions.processors());
   work.regionTests = objects * (regions * (1 + lights) + lights);
   return work;
 }
@@ -223,8 +224,13 @@ HostPreparation prepare(const core::Scene& scene, const core::View& view, const 
       setup.sceneTree = wholeScene;
     }
   seconds.pruning = laps.next();
-  return {std::move(load),    partition.balance,    partition.forecast,          std::move(context),
-          std::move(setups), std::move(partition.estimates), work};
+  return {std::move(load),
+          partition.balance,
+          partition.forecast,
+          std::move(context),
+          std::move(setups),
+          std::move(partition.estimates),
+          work};
 }
 
 // When the run started, when the engine was given the processors, and when the synthesis phase started
@@ -292,8 +298,7 @@ RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& set
   if (machine.emulate) {
     recordEmbedding(embedInHypercube(host.context.regions, out.settings), out);
     host.work.mappingSteps = out.hostWork.mappingSteps;
-  }
-  else if (machine.mapHypercube)
+  } else if (machine.mapHypercube)
     alongsideSynthesis = [&] {
       embedding = std::async(std::launch::async,
                              [&] { return embedInHypercube(host.context.regions, out.settings); });

@@ -95,21 +95,20 @@ nlohmann::json emulatedJson(const MachineReport& report) {
                      {"bytes", l.bytes}});
   const HostPreprocessing& pre = run.preprocessing;
   const HostWork& work = report.hostWork;
-  const nlohmann::json preprocessing{
-      {"samplingSeconds", pre.sampling},
-      {"partitioningSeconds", pre.partitioning},
-      {"pruningSeconds", pre.pruning},
-      {"mappingSeconds", pre.mapping},
-      {"transferSeconds", pre.transfer},
-      {"setupMessages", pre.messages},
-      {"setupBytes", pre.bytes},
-      {"work",
-       {{"sampledRays", work.sampling.processed.totalRays()},
-        {"samplingTests", work.sampling.processed.intersectionTests},
-        {"samplingBoxTests", work.sampling.processed.boxTests},
-        {"piecesWeighed", work.piecesWeighed},
-        {"regionTests", work.regionTests},
-        {"mappingSteps", work.mappingSteps}}}};
+  const nlohmann::json preprocessing{{"samplingSeconds", pre.sampling},
+                                     {"partitioningSeconds", pre.partitioning},
+                                     {"pruningSeconds", pre.pruning},
+                                     {"mappingSeconds", pre.mapping},
+                                     {"transferSeconds", pre.transfer},
+                                     {"setupMessages", pre.messages},
+                                     {"setupBytes", pre.bytes},
+                                     {"work",
+                                      {{"sampledRays", work.sampling.processed.totalRays()},
+                                       {"samplingTests", work.sampling.processed.intersectionTests},
+                                       {"samplingBoxTests", work.sampling.processed.boxTests},
+                                       {"piecesWeighed", work.piecesWeighed},
+                                       {"regionTests", work.regionTests},
+                                       {"mappingSteps", work.mappingSteps}}}};
   return {{"platform", run.platform},
           {"makespanSeconds", run.makespan},
           {"preprocessingSeconds", pre.seconds},

@@ -79,8 +79,9 @@ std::string scalingTable(const std::vector<ScalingPoint>& points, const core::Sc
   std::string text = fmt::format("{} at {}x{}, depth {}: simulated time against processors{}\n", scene.name,
                                  settings.width, settings.height, settings.shading.maxDepth,
                                  paper ? " (table 2's configuration; the paper's times beside)" : "");
-  text += "  procs  grid     simulated s   speedup  efficiency   host s  end to end s  e2e eff.  blocked  "
-          "ray messages  wall s";
+  text +=
+      "  procs  grid     simulated s   speedup  efficiency   host s  end to end s  e2e eff.  blocked  "
+      "ray messages  wall s";
   text += paper ? "   paper s  paper eff.  ours/paper\n" : "\n";
   for (const ScalingPoint& p : points) {
     if (p.deadlockAt >= 0) {
@@ -90,7 +91,8 @@ std::string scalingTable(const std::vector<ScalingPoint>& points, const core::Sc
       continue;
     }
     text += fmt::format(
-        "  {:>5}  {:>2}x{:<3} {:>13.1f} {:>9.2f} {:>11.2f} {:>8.1f} {:>13.1f} {:>9.2f} {:>7.1f}% {:>13} {:>7.2f}",
+        "  {:>5}  {:>2}x{:<3} {:>13.1f} {:>9.2f} {:>11.2f} {:>8.1f} {:>13.1f} {:>9.2f} {:>7.1f}% {:>13} "
+        "{:>7.2f}",
         p.processors, p.rows, p.columns, p.makespan, p.speedup, p.efficiency, p.preprocessing, p.endToEnd,
         p.endToEndEfficiency, 100 * p.blockedShare, p.rayMessages, p.wallSeconds);
     if (const auto published = kTable2Seconds.find(p.processors); paper && published != kTable2Seconds.end())

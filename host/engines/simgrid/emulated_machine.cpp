@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <simgrid/s4u.hpp>
 #include <stdexcept>
 #include <type_traits>
@@ -216,6 +217,18 @@ std::vector<std::string> simulationArguments() {
   return {"raycube", "--cfg=network/model:CM02", "--cfg=network/crosstraffic:0", "--log=root.thres:critical"};
 }
 
+// A simulation (one per process) of the platform, with simulationArguments().
+std::unique_ptr<s4u::Engine> engineOn(const EmulatedPlatform& platform) {
+  std::vector<std::string> args = simulationArguments();
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  int argc = int(args.size());
+  auto engine = std::make_unique<s4u::Engine>(&argc, argv.data());
+  loadPlatform(*engine, platform);
+  return engine;
+}
+
 // The loaded platform's hosts for the interconnect: node-<n> for each hypercube node, and the manager.
 queues::SimGridWiring wiringFor(const SimulationInput& in) {
   queues::SimGridWiring wiring;
@@ -275,13 +288,7 @@ EmulatedRun emulatedRunOf(const SimulationInput& in, const queues::SimGridInterc
 template <class Real>
 void simulate(SimulationInput in, PipeWriter& out) {
   const auto wallStart = Clock::now();
-  std::vector<std::string> args = simulationArguments();
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  int argc = int(args.size());
-  s4u::Engine engine(&argc, argv.data());
-  loadPlatform(engine, in.platform);
+  const std::unique_ptr<s4u::Engine> engine = engineOn(in.platform);
   const queues::SimGridWiring wiring = wiringFor(in);
   const double scale = speedScale(in.platform, *wiring.hosts[0]);
   queues::SimGridInterconnect<Real> net(in.context.regions, wiring);
@@ -314,7 +321,7 @@ void simulate(SimulationInput in, PipeWriter& out) {
     hostDone = true;
   });
   net.startCommunicationTasks();
-  engine.run();
+  engine->run();
   // SimGrid ends a run where no actor can move as it ends a finished one (it says so on stderr): a cycle
   // of processors locked on each other's full FIFOs (--fifo-full lock) is the run's result.
   std::vector<int> lockedOn;
@@ -369,13 +376,7 @@ struct HostInput {
 // other, each send paying the manager's CPU its overhead and the node's its receipt; the preparation ends
 // when the last node has taken its setup.
 HostPreprocessing simulateHostPreprocessing(const HostInput& in) {
-  std::vector<std::string> args = simulationArguments();
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  int argc = int(args.size());
-  s4u::Engine engine(&argc, argv.data());
-  loadPlatform(engine, in.platform);
+  const std::unique_ptr<s4u::Engine> engine = engineOn(in.platform);
   s4u::Host* manager = hostNamed(queues::kCubeManagerHost, in.platform);
   const double scale = speedScale(in.platform, *hostNamed(hostName(0), in.platform));
   const CostTable& costs = in.platform.costs;
@@ -407,7 +408,7 @@ HostPreprocessing simulateHostPreprocessing(const HostInput& in) {
       pre.bytes += in.setupBytes[p];
     }
   });
-  engine.run();
+  engine->run();
   pre.seconds = s4u::Engine::get_clock();  // the last node has taken its setup
   pre.transfer = pre.seconds - transferStart;
   return pre;
@@ -486,16 +487,23 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
   if (hooks.hostWork) {
     const std::vector<std::uint64_t> bytes = setupBytesOf(context, setups);
     const HostInput input{platform_, *hooks.hostWork, bytes, cubeNode_};
-    pre = inChildProcess<HostPreprocessing>(
-        [&](PipeWriter& out) {
-          const HostPreprocessing simulated = simulateHostPreprocessing(input);
-          out.value(Record::Reports);
-          out.value(simulated);
-        },
-        [](PipeReader& in) {
-          if (in.value<Record>() == Record::Failure) throw std::runtime_error(in.string());
-          return in.value<HostPreprocessing>();
-        });
+    try {
+      pre = inChildProcess<HostPreprocessing>(
+          [&](PipeWriter& out) {
+            const HostPreprocessing simulated = simulateHostPreprocessing(input);
+            out.value(Record::Reports);
+            out.value(simulated);
+          },
+          [](PipeReader& in) {
+            if (in.value<Record>() == Record::Failure) throw std::runtime_error(in.string());
+            return in.value<HostPreprocessing>();
+          });
+    } catch (const std::runtime_error& e) {  // SimGrid aborts on a missing route
+      throw std::runtime_error(fmt::format(
+          "{} while the host sent the nodes their setups: {} needs a route from manager to every node "
+          "(symmetrical=\"YES\" on the nodes' routes to manager)",
+          e.what(), platform_.platformFile.string()));
+    }
   }
   MachineRun run = inChildProcess<MachineRun>(
       [&](PipeWriter& out) {

@@ -44,17 +44,19 @@ hosts() {
     printf "    <host id=\"manager\" speed=\"%s\"/>\n", speed }'
 }
 
-# Every node's own link to the manager (the iPSC's eighth port), both ways: the manager sends each node its
-# setup before the synthesis (3.2 step 1) and receives the nodes' contributions during it.
+# Every node's own link to the manager (the iPSC's eighth port). The manager receives the nodes'
+# contributions on it during the synthesis; on the iPSC/1 it also sends each node its setup over it before
+# (3.2 step 1): symmetrical routes (YES). Where routes are searched (Dijkstra), a symmetrical link would make
+# the manager a way between nodes: the cluster's manager sends through the switch instead (NO).
 manager_links() {
   awk -v n="$1" -v bw="$2" -v lat="$3" 'BEGIN {
     for (i = 0; i < n; ++i)
       printf "    <link id=\"node-%d:manager\" bandwidth=\"%s\" latency=\"%s\"/>\n", i, bw, lat }'
 }
 manager_routes() {
-  awk -v n="$1" 'BEGIN {
+  awk -v n="$1" -v both="$2" 'BEGIN {
     for (i = 0; i < n; ++i)
-      printf "    <route src=\"node-%d\" dst=\"manager\" symmetrical=\"YES\"><link_ctn id=\"node-%d:manager\"/></route>\n", i, i }'
+      printf "    <route src=\"node-%d\" dst=\"manager\" symmetrical=\"%s\"><link_ctn id=\"node-%d:manager\"/></route>\n", i, both, i }'
 }
 
 {
@@ -71,7 +73,7 @@ XML
     for (i = 0; i < n; ++i)
       for (bit = 1; bit < n; bit *= 2)
         printf "    <link id=\"node-%d:node-%d\" bandwidth=\"%s\" latency=\"%s\"/>\n", i, (int(i / bit) % 2 ? i - bit : i + bit), bw, lat }'
-  manager_routes $ipsc1_nodes
+  manager_routes $ipsc1_nodes YES
   awk -v n=$ipsc1_nodes 'BEGIN {
     for (i = 0; i < n; ++i)
       for (bit = 1; bit < n; bit *= 2)
@@ -92,7 +94,10 @@ XML
   manager_links $cluster_nodes $cluster_bandwidth $cluster_latency
   awk -v n=$cluster_nodes -v bw=$cluster_bandwidth -v lat=$cluster_nic_latency 'BEGIN {
     for (i = 0; i < n; ++i) printf "    <link id=\"node-%d:nic\" bandwidth=\"%s\" latency=\"%s\"/>\n", i, bw, lat }'
-  manager_routes $cluster_nodes
+  # The manager's own interface into the switch, for the setups it sends.
+  echo "    <link id=\"manager:nic\" bandwidth=\"$cluster_bandwidth\" latency=\"$cluster_nic_latency\"/>"
+  manager_routes $cluster_nodes NO
+  echo '    <route src="manager" dst="switch" symmetrical="NO"><link_ctn id="manager:nic"/></route>'
   awk -v n=$cluster_nodes 'BEGIN {
     for (i = 0; i < n; ++i)
       printf "    <route src=\"node-%d\" dst=\"switch\"><link_ctn id=\"node-%d:nic\"/></route>\n", i, i }'
