@@ -17,13 +17,13 @@ namespace {
 constexpr std::string_view kBuiltinPlatforms[] = {"ipsc1", "cluster"};
 
 std::map<std::string, double CostTable::*> costFields() {
-  return {{"sphereTest", &CostTable::sphereTest},    {"coneTest", &CostTable::coneTest},
-          {"polygonTest", &CostTable::polygonTest},  {"polygonVertex", &CostTable::polygonVertex},
-          {"patchTest", &CostTable::patchTest},      {"cellStep", &CostTable::cellStep},
-          {"raySegment", &CostTable::raySegment},    {"rayFinished", &CostTable::rayFinished},
-          {"raySpawned", &CostTable::raySpawned},    {"contribution", &CostTable::contribution},
-          {"sendSeconds", &CostTable::sendSeconds},  {"receiveSeconds", &CostTable::receiveSeconds},
-          {"relaySeconds", &CostTable::relaySeconds}};
+  return {{"sphereTest", &CostTable::sphereTest},     {"coneTest", &CostTable::coneTest},
+          {"polygonTest", &CostTable::polygonTest},   {"polygonVertex", &CostTable::polygonVertex},
+          {"patchTest", &CostTable::patchTest},       {"cellStep", &CostTable::cellStep},
+          {"raySegment", &CostTable::raySegment},     {"rayFinished", &CostTable::rayFinished},
+          {"raySpawned", &CostTable::raySpawned},     {"contribution", &CostTable::contribution},
+          {"sendSeconds", &CostTable::sendSeconds},   {"receiveSeconds", &CostTable::receiveSeconds},
+          {"relaySeconds", &CostTable::relaySeconds}, {"accumulateSeconds", &CostTable::accumulateSeconds}};
 }
 
 // The message costs a cost table gave in flop-equivalents before they were seconds: what replaces each.

@@ -33,6 +33,7 @@ struct CostTable {
   double sendSeconds = 0;     // a message sent (a ray, or the token), on the sender's CPU
   double receiveSeconds = 0;  // a message received, on the receiver's CPU
   double relaySeconds = 0;    // store and forward: a node receives and re-sends another's message
+  double accumulateSeconds = 0;  // the host: a contribution received and added to the frame buffer (3.4)
 
   // What a node's counted work costs: its computation in flop-equivalents (or seconds, ComputeUnit), its
   // messages in seconds (each linear: a difference of two calls is the cost of the work between them). A
@@ -55,6 +56,10 @@ struct EmulatedPlatform {
   Routing routing = Routing::StoreAndForward;
   std::optional<double> nodeSpeed;  // a cost table's nodeSpeed (flop-equivalents/s): replaces the platform's
   ComputeUnit computeUnit = ComputeUnit::FlopEquivalents;  // a cost table's `unit`
+  // --ranks N: the run is an N-rank MPI job on one computer, node-0 (mpirun without a host file): every
+  // processor and the host run on node-0 and share its cores (SimGrid's `core` count), as Open MPI's ranks
+  // share the machine's. 0: each processor on a host of its own (node-<hypercube node>).
+  int ranks = 0;
   CostTable costs;
 };
 
