@@ -2,6 +2,7 @@
 // that --platform and --costs read back, and the emulator charges those seconds as written.
 #include "host/studies/calibration.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -18,10 +19,10 @@ namespace {
 using testing_support::renderMachineWatched;
 using testing_support::settingsFor;
 
-const std::vector<std::string> kCostKeys{"sphereTest",  "coneTest",     "polygonTest", "polygonVertex",
-                                         "patchTest",   "cellStep",     "raySegment",  "rayFinished",
-                                         "raySpawned",  "contribution", "sendSeconds", "receiveSeconds",
-                                         "relaySeconds"};
+const std::vector<std::string> kCostKeys{"sphereTest",   "coneTest",         "polygonTest", "polygonVertex",
+                                         "patchTest",    "cellStep",         "raySegment",  "rayFinished",
+                                         "raySpawned",   "contribution",     "sendSeconds", "receiveSeconds",
+                                         "relaySeconds", "accumulateSeconds"};
 
 std::filesystem::path freshFolder(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
@@ -51,11 +52,11 @@ TEST(Calibration, WhatItWritesParsesBackToTheSameCostsInSeconds) {
   EXPECT_FALSE(p.nodeSpeed);
   // Written again from what was read, the file is the same: the round trip loses nothing.
   Calibration again = c;
-  const double* fields[] = {&p.costs.sphereTest,    &p.costs.coneTest,    &p.costs.polygonTest,
-                            &p.costs.polygonVertex, &p.costs.patchTest,   &p.costs.cellStep,
-                            &p.costs.raySegment,    &p.costs.rayFinished, &p.costs.raySpawned,
-                            &p.costs.contribution,  &p.costs.sendSeconds, &p.costs.receiveSeconds,
-                            &p.costs.relaySeconds};
+  const double* fields[] = {&p.costs.sphereTest,    &p.costs.coneTest,         &p.costs.polygonTest,
+                            &p.costs.polygonVertex, &p.costs.patchTest,        &p.costs.cellStep,
+                            &p.costs.raySegment,    &p.costs.rayFinished,      &p.costs.raySpawned,
+                            &p.costs.contribution,  &p.costs.sendSeconds,      &p.costs.receiveSeconds,
+                            &p.costs.relaySeconds,  &p.costs.accumulateSeconds};
   for (std::size_t i = 0; i < kCostKeys.size(); ++i) {
     EXPECT_EQ(*fields[i], c.costs[i].value) << kCostKeys[i];
     again.costs[i].value = *fields[i];
@@ -98,6 +99,39 @@ TEST(Calibration, AMeasuredFileHasEveryCostInItsPlace) {
   const EmulatedPlatform p = userPlatform(xml, costs);
   EXPECT_EQ(p.computeUnit, ComputeUnit::Seconds);
   EXPECT_GT(p.costs.sphereTest, 0);
+}
+
+// --ranks N: every processor and the host on node-0, sharing its cores. Work without messages between
+// processors (eye rays only, light pyramids held) and costs of a microsecond per ray segment: k processors
+// on one core take k times as long as on k cores of their own, the sum of their work; and a second run
+// gives the same simulated time to the last digit.
+TEST(Calibration, ProcessorsSharingACoreTakeTheSumOfTheirWork) {
+  auto run = [](int cores, int columns) {
+    Calibration c = handMade();
+    c.cores = cores;
+    for (MeasuredConstant& m : c.costs) m.value = m.key == "raySegment" ? 1e-6 : 0;
+    const auto [xml, costs] = writeCalibration(c, freshFolder(fmt::format("share{}-{}", cores, columns)));
+    MachineSettings m;
+    m.rows = 1;
+    m.columns = columns;
+    m.balance = Balance::Uniform;
+    m.emulate = userPlatform(xml, costs);
+    m.emulate->ranks = 2;
+    RenderSettings s = settingsFor(32);
+    s.shading.maxDepth = 1;
+    MachineReport report;
+    renderMachineWatched(core::makeBalls(1), s, m, report, "ranks");
+    double work = 0;
+    for (const ProcessorReport& p : report.processors) work += 1e-6 * double(p.node.processed.totalRays());
+    return std::pair{report.emulated->makespan, work};
+  };
+  const auto [oneCore, work] = run(1, 4);
+  EXPECT_GT(work, 0);
+  EXPECT_NEAR(oneCore, work, 1e-3 * work);  // four processors on one core: their work, one after another
+  const auto [fourCores, sameWork] = run(4, 4);
+  EXPECT_EQ(sameWork, work);
+  EXPECT_LT(fourCores, 0.5 * oneCore);  // on four cores, at most the largest share (balls 1 is uneven)
+  EXPECT_EQ(run(1, 4).first, oneCore);  // determinism
 }
 
 }  // namespace

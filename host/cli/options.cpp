@@ -42,13 +42,18 @@ namespace {
 
 // --emulate NAME | --platform FILE.xml, with --costs FILE: the machine to simulate, if any.
 std::optional<EmulatedPlatform> emulatedPlatform(const RenderCommand& cmd) {
-  if (!cmd.platformPath.empty()) return userPlatform(cmd.platformPath, cmd.costsPath);
-  if (cmd.emulate.empty()) {
+  std::optional<EmulatedPlatform> platform;
+  if (!cmd.platformPath.empty()) {
+    platform = userPlatform(cmd.platformPath, cmd.costsPath);
+  } else if (!cmd.emulate.empty()) {
+    platform = builtinPlatform(cmd.emulate);
+    if (!cmd.costsPath.empty()) applyCostFile(cmd.costsPath, *platform);
+  } else {
     if (!cmd.costsPath.empty()) throw std::invalid_argument("--costs needs --emulate or --platform");
+    if (cmd.ranks > 0) throw std::invalid_argument("--ranks needs --emulate or --platform");
     return std::nullopt;
   }
-  EmulatedPlatform platform = builtinPlatform(cmd.emulate);
-  if (!cmd.costsPath.empty()) applyCostFile(cmd.costsPath, platform);
+  platform->ranks = cmd.ranks;
   return platform;
 }
 
@@ -312,6 +317,11 @@ void addEngineOptions(CLI::App* render, RenderCommand& cmd) {
                      "A SimGrid platform XML to emulate (hosts node-0 ... and manager; see README)");
   render->add_option("--costs", cmd.costsPath,
                      "Cost table: 'name value' lines (README, Emulated machine time)");
+  render
+      ->add_option("--ranks", cmd.ranks,
+                   "Emulated: the run as an N-rank MPI job on one computer (the platform's node-0, its cores "
+                   "shared by every processor and the host), as mpirun -np N on this machine")
+      ->check(CLI::Range(2, 4096));
 }
 
 // What a run writes besides the image: statistics, charts, traces, a report.

@@ -66,6 +66,7 @@ struct RenderCommand {
   std::string emulate;
   std::string platformPath;
   std::string costsPath;
+  int ranks = 0;  // --ranks N: emulate an N-rank MPI job on the platform's node-0
   std::string tracePath;
   std::string timelinePath;
   std::string transport = "threads";

@@ -23,8 +23,9 @@ std::map<std::string, double CostTable::*> costFields() {
           {"raySegment", &CostTable::raySegment},     {"rayFinished", &CostTable::rayFinished},
           {"raySpawned", &CostTable::raySpawned},     {"contribution", &CostTable::contribution},
           {"sendSeconds", &CostTable::sendSeconds},   {"receiveSeconds", &CostTable::receiveSeconds},
-          {"relaySeconds", &CostTable::relaySeconds}, {"segmentClip", &CostTable::segmentClip},
-          {"regionTest", &CostTable::regionTest},     {"mappingStep", &CostTable::mappingStep}};
+          {"relaySeconds", &CostTable::relaySeconds}, {"accumulateSeconds", &CostTable::accumulateSeconds},
+          {"segmentClip", &CostTable::segmentClip},   {"regionTest", &CostTable::regionTest},
+          {"mappingStep", &CostTable::mappingStep}};
 }
 
 // The message costs a cost table gave in flop-equivalents before they were seconds: what replaces each.

@@ -34,6 +34,7 @@ struct CostTable {
   double sendSeconds = 0;     // a message sent (a ray, or the token), on the sender's CPU
   double receiveSeconds = 0;  // a message received, on the receiver's CPU
   double relaySeconds = 0;    // store and forward: a node receives and re-sends another's message
+  double accumulateSeconds = 0;  // the host: a contribution received and added to the frame buffer (3.4)
   // The host's own work before the synthesis (HostWork), at the manager's speed. Its sub-sampled rays cost
   // what a node's rays cost (the fields above); these price the rest, hand counts as above.
   double segmentClip = 20;  // a sub-sampled segment piece weighed at a BSP line or clipped (Liang-Barsky)
@@ -70,6 +71,10 @@ struct EmulatedPlatform {
   node::FifoFull fifoFull = node::FifoFull::Overflow;
   std::optional<double> nodeSpeed;  // a cost table's nodeSpeed (flop-equivalents/s): replaces the platform's
   ComputeUnit computeUnit = ComputeUnit::FlopEquivalents;  // a cost table's `unit`
+  // --ranks N: the run is an N-rank MPI job on one computer, node-0 (mpirun without a host file): every
+  // processor and the host run on node-0 and share its cores (SimGrid's `core` count), as Open MPI's ranks
+  // share the machine's. 0: each processor on a host of its own (node-<hypercube node>).
+  int ranks = 0;
   CostTable costs;
 };
 

@@ -19,6 +19,7 @@
 #include "core/view.h"
 #include "core/whitted.h"
 #include "host/machine/machine_report.h"
+#include "host/render/framebuffer.h"
 #include "host/render/render_machine.h"
 #include "host/util/clock.h"
 #include "node/ray_message.h"
@@ -234,6 +235,19 @@ std::pair<double, double> shadingSeconds(int repetitions) {
   return {perLightRay, spawnedPerHit > 0 ? std::max(0.0, (perHit - perLightRay) / spawnedPerHit) : 0.0};
 }
 
+// The host: a contribution added to the frame buffer (3.4), over a 512x512 image in random order.
+double accumulateSeconds(int repetitions) {
+  constexpr int kSide = 512, kPieces = 1 << 20;
+  Framebuffer frame(kSide, kSide);
+  std::mt19937 random(47);
+  std::vector<core::Contribution> pieces;
+  for (int i = 0; i < kPieces; ++i)
+    pieces.push_back({std::uint32_t(random() % (kSide * kSide)), core::Color(0.25, 0.5, 0.125)});
+  return secondsPerOperation(repetitions, kPieces, [&] {
+    for (const core::Contribution& c : pieces) frame.add(c);
+  });
+}
+
 // A contribution into the block a node ships to the host (queues::kContributionsPerShipment at a time).
 double contributionSeconds(int repetitions) {
   std::vector<core::Contribution> block;
@@ -397,6 +411,7 @@ Calibration calibrateThisMachine(const CalibrationOptions& options) {
   table.sendSeconds = send;
   table.receiveSeconds = receive;
   table.relaySeconds = send + receive;
+  table.accumulateSeconds = accumulateSeconds(n);
   // What the microbenchmarks leave out of a real render (taking a ray up in a region, the scheduler, the
   // FIFOs' bookkeeping, cache misses) per ray segment: balls 2 at 128x128 on one processor.
   const core::Scene balls2 = core::makeBalls(2);
@@ -441,7 +456,10 @@ Calibration calibrateThisMachine(const CalibrationOptions& options) {
           table.receiveSeconds,
           "the other half",
       },
-      {"relaySeconds", table.relaySeconds, "a receive and a send (routing direct: no relaying happens)"}};
+      {"relaySeconds", table.relaySeconds, "a receive and a send (routing direct: no relaying happens)"},
+      {"accumulateSeconds", table.accumulateSeconds,
+       "the host: a contribution added to a 512x512 frame buffer (host::Framebuffer::add), random pixels, " +
+           median}};
   const auto [oneWay, bytesPerSecond] = fifoLink(n);
   c.latency = {"latency", oneWay, "half a round trip between two threads through two FIFOs, " + median};
   c.bandwidth = {"bandwidth", bytesPerSecond,

@@ -235,8 +235,14 @@ queues::SimGridWiring wiringFor(const SimulationInput& in) {
   wiring.capacity = in.queueCapacity;
   wiring.cubeNode = in.cubeNode;
   const std::uint32_t cubeNodes = cubeNodesFor(in.cubeNode);
-  for (std::uint32_t n = 0; n < cubeNodes; ++n) wiring.hosts.push_back(hostNamed(hostName(n), in.platform));
-  wiring.manager = hostNamed(queues::kCubeManagerHost, in.platform);
+  if (in.platform.ranks > 0) {  // one MPI job on one computer: everything on node-0, sharing its cores
+    s4u::Host* computer = hostNamed(hostName(0), in.platform);
+    wiring.hosts.assign(cubeNodes, computer);
+    wiring.manager = computer;
+  } else {
+    for (std::uint32_t n = 0; n < cubeNodes; ++n) wiring.hosts.push_back(hostNamed(hostName(n), in.platform));
+    wiring.manager = hostNamed(queues::kCubeManagerHost, in.platform);
+  }
   wiring.routing = in.platform.routing;
   wiring.relaySeconds = in.platform.costs.relaySeconds;
   return wiring;
@@ -284,6 +290,28 @@ EmulatedRun emulatedRunOf(const SimulationInput& in, const queues::SimGridInterc
   return run;
 }
 
+// The host's accumulation (3.4) charged on its own CPU, a block of contributions at a time (an execute per
+// contribution would cost the simulation more than the render).
+class ChargedAccumulation final : public core::ContributionSink {
+ public:
+  ChargedAccumulation(core::ContributionSink& sink, double secondsEach)
+      : sink_(sink), secondsEach_(secondsEach) {}
+  void add(const core::Contribution& c) override {
+    sink_.add(c);
+    if (++pending_ == queues::kContributionsPerShipment) charge();
+  }
+  void charge() {
+    if (pending_ > 0 && secondsEach_ > 0)
+      s4u::this_actor::execute(double(pending_) * secondsEach_ * s4u::this_actor::get_host()->get_speed());
+    pending_ = 0;
+  }
+
+ private:
+  core::ContributionSink& sink_;
+  double secondsEach_;
+  std::size_t pending_ = 0;
+};
+
 // The whole simulation, in the child process: results to `out`.
 template <class Real>
 void simulate(SimulationInput in, PipeWriter& out) {
@@ -316,7 +344,9 @@ void simulate(SimulationInput in, PipeWriter& out) {
   bool hostDone = false;
   double makespan = 0;
   s4u::Actor::create("host", wiring.manager, [&] {
-    net.serveHost(toParent);
+    ChargedAccumulation accumulation(toParent, in.platform.costs.accumulateSeconds);
+    net.serveHost(accumulation);
+    accumulation.charge();
     makespan = s4u::Engine::get_clock();
     hostDone = true;
   });
