@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "core/ray_tree.h"
 #include "core/transmission.h"
@@ -16,12 +18,39 @@ namespace {
 // rounding put just behind the eye plane (it is in front of the eye wherever its pixel's pyramid is).
 constexpr int kPartsOfALine = 3;
 
-// Test memos for every object the walk can meet, the region's and the rear's: indices up to the largest.
+// Test memos for every object the walk can meet, the region's, the rear's and its light volumes': indices
+// up to the largest.
 std::size_t memosFor(const NodeSetup& setup) {
   std::uint32_t end = 0;
   for (const std::vector<std::uint32_t>* list : {&setup.objects, &setup.rearObjects})
     for (std::uint32_t o : *list) end = std::max(end, o + 1);
+  for (const LightSources* sources : {&setup.lightSources, &setup.rearLightSources})
+    for (const std::vector<std::uint32_t>& list : sources->volumeObjects)
+      for (std::uint32_t o : list) end = std::max(end, o + 1);
   return end;
+}
+
+// With the paper's cells, the host gives every light's volume for the sources light rays can start from.
+void requireLightVolumes(const NodeSetup& setup, std::size_t lights) {
+  for (const LightSources* sources : {&setup.lightSources, &setup.rearLightSources}) {
+    if (sources->eyeBox.empty()) continue;
+    bool given = sources->volumeObjects.size() == lights && sources->volumeBoxes.size() == lights;
+    for (std::size_t l = 0; given && l < lights; ++l)
+      given = sources->volumeBoxes[l].size() == sources->volumeObjects[l].size();
+    if (!given)
+      throw std::invalid_argument(
+          "processor " + std::to_string(setup.id) +
+          ": the paper's cells need each light's volume, its objects with their eye boxes");
+  }
+}
+
+// A light volume's objects reaching the eye plane or behind it: what the rear part of its rays can meet.
+std::vector<std::vector<std::uint32_t>> rearPartsOf(const LightSources& sources) {
+  std::vector<std::vector<std::uint32_t>> rear(sources.volumeObjects.size());
+  for (std::size_t l = 0; l < rear.size(); ++l)
+    for (std::size_t k = 0; k < sources.volumeObjects[l].size(); ++k)
+      if (reachesBehindEye(sources.volumeBoxes[l][k])) rear[l].push_back(sources.volumeObjects[l][k]);
+  return rear;
 }
 
 // A ray setting out from where it starts, for processor `destination`, carrying nothing yet. Built where it
@@ -75,8 +104,20 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   if (stats_.bvh)
     regionBvh_ = std::make_unique<const core::BasicBvh<Real>>(core::bvhOver<Real>(
         scene_, shading_, setup_.objects, setup_.sceneShape.get(), setup_.database->wholeIdOf()));
-  if (setup_.lightRays != LightRayMode::Messages)
+  if (setup_.lightRays != LightRayMode::Messages && structure_ == CellStructure::Paper) {
+    requireLightVolumes(setup_, scene_.lights.size());
+    const LightSources* sources[2] = {&setup_.lightSources, &setup_.rearLightSources};
+    for (int s = 0; s < 2; ++s) {
+      for (std::size_t l = 0; l < sources[s]->volumeObjects.size(); ++l) {
+        const std::vector<EyeBox>& boxes = sources[s]->volumeBoxes[l];
+        lightCells_[s].emplace_back(area_, context.lines(), setup_.cellLevel, true,
+                                    sources[s]->volumeObjects[l], boxes, true);
+      }
+      lightRearObjects_[s] = rearPartsOf(*sources[s]);
+    }
+  } else if (setup_.lightRays != LightRayMode::Messages) {
     lightRayTree_.emplace(setup_.database, context.shading, setup_.sceneShape.get(), setup_.sceneTree);
+  }
   stats_.lightObjects = setup_.lightObjects;
   stats_.extraLightObjects = setup_.extraLightObjects;
 }
@@ -352,9 +393,9 @@ void LogicalProcessor<Real>::evaluate(const Message& m, bool primary) {
   ++stats_.processed.of(ray.kind);
   newRayStamp();
   const EyeFrameRay er = EyeFrameRay::of(ray.ray, context_.view);
-  if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmissionOrAheadT == 1 &&
-      startsInLightSourceBox(er.o))
-    return finishRay(ray, core::Hit{}, traceWhereItStarts(ray));
+  if (ray.kind == core::RayKind::Light && m.tEnter == ray.ray.tMin && m.transmissionOrAheadT == 1)
+    if (const LightSources* from = lightSourcesHolding(er.o))
+      return finishRay(ray, core::Hit{}, traceWhereItStarts(ray, er, *from));
   const bool light = ray.kind == core::RayKind::Light;
   const double tMax = light ? ray.ray.tMax : core::kInfinity;
   core::Hit hit;
@@ -429,21 +470,65 @@ bool LogicalProcessor<Real>::nothingAhead(const EyeFrameRay& er, const core::Bas
 // its light's volume, all held here: traced in one piece, exactly as the reference traces it; no message.
 // `origin`: the ray's origin in the eye frame (EyeFrameRay::o).
 template <class Real>
-bool LogicalProcessor<Real>::startsInLightSourceBox(const core::Vec3& origin) const {
-  if (setup_.lightRays == LightRayMode::Messages) return false;
+const LightSources* LogicalProcessor<Real>::lightSourcesHolding(const core::Vec3& origin) const {
+  if (setup_.lightRays == LightRayMode::Messages) return nullptr;
   auto inside = [&](const core::Box& box) {
     for (int a = 0; a < 3; ++a)
       if (!(origin[a] >= box.lo[a] && origin[a] <= box.hi[a])) return false;
     return true;
   };
-  return inside(setup_.lightSources.eyeBox) || inside(setup_.rearLightSources.eyeBox);
+  if (inside(setup_.lightSources.eyeBox)) return &setup_.lightSources;
+  return inside(setup_.rearLightSources.eyeBox) ? &setup_.rearLightSources : nullptr;
 }
 
-// Its transmission (a light ray that starts in the light-source box).
+// Its transmission (a light ray that starts in the light-source box `from`): in the paper's cells of its
+// light's volume, or in the tree over what the processor holds (with the shadow cache).
 template <class Real>
-double LogicalProcessor<Real>::traceWhereItStarts(const TracedRay& ray) {
+double LogicalProcessor<Real>::traceWhereItStarts(const TracedRay& ray, const EyeFrameRay& er,
+                                                  const LightSources& from) {
   ++stats_.lightRaysTracedLocally;
+  if (structure_ == CellStructure::Paper) return walkLightVolume(ray, er, from);
   return core::lightRayTransmission(shading_, *lightRayTree_, ray, stats_.processed, lightRayScratch_);
+}
+
+// The paper's cells for a light ray traced where it starts (3.3, 3.7.2): the region's own super-cells, its
+// outermost faces pushed to infinity, listing its light's volume's objects and cut by their depths, walked
+// as evaluate() walks the region's, with the same interval rule and test memos. Beyond the region's pixel
+// area the outer columns are wide: a light cone's extra objects there are more depth cuts and tests than a
+// light pyramid's. No shadow cache: a light-ray message has none, and a cached blocker tested over the
+// whole ray may hit where no cell lists it (a scene of 1e38 scale ratios), its answer then depending on
+// the rays traced before.
+template <class Real>
+double LogicalProcessor<Real>::walkLightVolume(const TracedRay& ray, const EyeFrameRay& er,
+                                               const LightSources& from) {
+  newRayStamp();
+  ahead_ = core::Hit{};  // the ray that spawned it is done
+  const int source = &from == &setup_.lightSources ? 0 : 1;
+  const RegionCells& cells = lightCells_[source][ray.light];
+  const std::vector<std::uint32_t>& rear = lightRearObjects_[source][ray.light];
+  core::Hit hit;  // a light ray finds none: it multiplies transmissions
+  double transmission = 1, t = ray.ray.tMin;
+  const double tMax = ray.ray.tMax;
+  auto visit = [&](double ta, double tb, const std::vector<std::uint32_t>& objects) {
+    return visitInterval(ray, ta, tb, objects, hit, transmission);
+  };
+  for (int part = 0; part < kPartsOfALine; ++part) {
+    const double tEnd = std::min(er.partEnd(t), tMax);
+    if (!er.inFront(t)) {
+      if ((t < tEnd && !visit(t, tEnd, rear)) || er.lastPart(t, tMax)) return transmission;
+      t = tEnd;
+      continue;
+    }
+    int column, row;
+    cells.locate(er, t, column, row);
+    RegionExit exit;
+    // The cells cover all the space in front of the eye: the walk leaves them only on a NaN, having met what
+    // every test of NaN meets, nothing.
+    const WalkResult result = cells.walk(er, t, tEnd, column, row, visit, exit, stats_.processed.cellSteps);
+    if (result == WalkResult::Stopped || er.lastPart(t, tMax)) return transmission;
+    t = tEnd;
+  }
+  return transmission;
 }
 
 template <class Real>
@@ -481,9 +566,10 @@ void LogicalProcessor<Real>::deliver(const core::BasicRayOutcome<Real>& outcome)
                           : context_.regions.ownerAt(er, tEnter);
     if (owner != setup_.id) {
       send(departing(spawned, owner));
-    } else if (spawned.kind == core::RayKind::Light && startsInLightSourceBox(er.o)) {
+    } else if (const LightSources* from =
+                   spawned.kind == core::RayKind::Light ? lightSourcesHolding(er.o) : nullptr) {
       ++stats_.processed.of(spawned.kind);
-      shade(spawned, core::Hit{}, traceWhereItStarts(spawned), lightOutcome_);
+      shade(spawned, core::Hit{}, traceWhereItStarts(spawned, er, *from), lightOutcome_);
       shipContributions(lightOutcome_);  // a light ray spawns nothing
     } else {
       local_.push_back(spawned);

@@ -140,8 +140,11 @@ class LogicalProcessor {
   void finishRay(const TracedRay& ray, const core::Hit& hit, double transmission);
   void shade(const TracedRay& ray, const core::Hit& hit, double transmission,
              core::BasicRayOutcome<Real>& outcome);
-  bool startsInLightSourceBox(const core::Vec3& eyeFrameOrigin) const;
-  double traceWhereItStarts(const TracedRay& ray);
+  // 3.7.2: the light sources (the region's or the rear's) whose box holds a light ray's origin in the eye
+  // frame, or none: the ray is traced where it starts only from there.
+  const LightSources* lightSourcesHolding(const core::Vec3& eyeFrameOrigin) const;
+  double traceWhereItStarts(const TracedRay& ray, const EyeFrameRay& er, const LightSources& from);
+  double walkLightVolume(const TracedRay& ray, const EyeFrameRay& er, const LightSources& from);
   bool beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const;
   bool nothingAhead(const EyeFrameRay& er, const core::BasicRay<Real>& ray, int next, double t,
                     double tMax) const;
@@ -178,10 +181,16 @@ class LogicalProcessor {
   SampleRect area_;
   CellStructure structure_;  // Paper or Bvh
   RegionCells cells_;
-  // Every object the processor holds, in one tree, for light rays traced where they start (3.7.2). Holding
-  // more than a query needs costs it nothing but box tests: an object off a light ray's segment never has a
-  // hit on it.
+  // Every object the processor holds, in one tree, for light rays traced where they start (3.7.2), in BVH
+  // regions. Holding more than a query needs costs it nothing but box tests: an object off a light ray's
+  // segment never has a hit on it.
   std::optional<LightRayTree<Real>> lightRayTree_;
+  // With the paper's cells those light rays walk cells instead (3.3): per light volume (the region's
+  // sources, then the rear's; light by light), the region's super-cells with their outer faces at infinity,
+  // listing the volume's objects and cut by their depths; behind the eye plane, the volume's objects
+  // reaching there.
+  std::array<std::vector<RegionCells>, 2> lightCells_;
+  std::array<std::vector<std::vector<std::uint32_t>>, 2> lightRearObjects_;
   // With CellStructure::Bvh, the region's own objects, the only ones a hit inside the region can be on.
   std::unique_ptr<const core::BasicBvh<Real>> regionBvh_;
   long long nextPrimary_ = 0;

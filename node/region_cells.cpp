@@ -24,13 +24,19 @@ std::vector<int> halvings(int lo, int hi, int level) {
 }  // namespace
 
 RegionCells::RegionCells(const SampleRect& area, const ScreenLines& lines, int level, bool depthCuts,
-                         const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& boxes) {
+                         const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& boxes,
+                         bool unbounded) {
   if (boxes.size() != objects.size())
     throw std::invalid_argument("a region's cells need one eye box per object of the region");
   sampleBounds_[0] = halvings(area.x0, area.x1, level);
   sampleBounds_[1] = halvings(area.y0, area.y1, level);
-  for (int axis = 0; axis < 2; ++axis)
+  for (int axis = 0; axis < 2; ++axis) {
     for (int k : sampleBounds_[axis]) bounds_[axis].push_back(lines.at(axis, k));
+    if (unbounded) {
+      bounds_[axis].front() = -core::kInfinity;
+      bounds_[axis].back() = core::kInfinity;
+    }
+  }
   columnsX_ = int(bounds_[0].size()) - 1;
   const int rows = int(bounds_[1].size()) - 1;
   std::vector<char> held(objects.size(), 0);  // per entry of `objects`

@@ -48,8 +48,11 @@ class RegionCells {
   // objects: indices into the database, and the eye box of each (boxes[k] is objects[k]'s); only those
   // touching the region are kept.
   // depthCuts: cut each column by its objects' depth faces (3.3); without, a column is one cell.
+  // unbounded: the outermost faces pushed to infinity, as the screen's edge regions' are (3.1): the cells
+  // cover everything in front of the eye (a light volume's objects, 3.7.2), the outer columns widest.
   RegionCells(const SampleRect& area, const ScreenLines& lines, int level, bool depthCuts,
-              const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& boxes);
+              const std::vector<std::uint32_t>& objects, const std::vector<EyeBox>& boxes,
+              bool unbounded = false);
 
   // Walks [t, tEnd) from the column containing the ray at t (or the given sample's column for eye rays),
   // calling visit(tEnter, tExit, objectIndices) for every non-empty cell interval, in t order, until visit

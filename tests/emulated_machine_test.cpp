@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "core/nff_reader.h"
 #include "core/spd/balls.h"
@@ -68,6 +69,49 @@ TEST(EmulatedMachine, TheSameRunGivesTheSameSimulatedTimeToTheLastDigit) {
     EXPECT_EQ(reports[0].processors[p].node.processed.intersectionTests,
               reports[1].processors[p].node.processed.intersectionTests)
         << p;
+  }
+}
+
+// Issue 40: under the paper's cells, the emulated default, light rays traced where they start walk cells of
+// their light's volume (3.3, 3.7.2), so a light cone, holding more objects than a light pyramid, costs more
+// tests and more computing time; the image stays the reference's, and the time the same run to run.
+TEST(EmulatedMachine, UnderThePaperCellsALightConeCostsMoreThanALightPyramid) {
+  const core::Scene scene = core::makeBalls(2);
+  const RenderSettings settings = settingsFor(32);
+  const RenderResult reference = renderReference(scene, settings);
+  for (const auto& [rows, columns] : std::vector<std::pair<int, int>>{{4, 4}, {8, 8}}) {
+    std::map<node::LightRayMode, MachineReport> reports;
+    for (node::LightRayMode mode : {node::LightRayMode::Cone, node::LightRayMode::Pyramid}) {
+      MachineSettings m = emulated(rows, columns);
+      m.lightRays = mode;
+      const std::string label = fmt::format("{}x{} {}", rows, columns, int(mode));
+      MachineReport& report = reports[mode];
+      const RenderResult result = renderMachineWatched(scene, settings, m, report, label);
+      testing_support::expectMachineMatchesReference(reference, result, report, label);
+      EXPECT_EQ(report.settings.cells, node::CellStructure::Paper) << label << ": the emulated default";
+      MachineReport again;
+      renderMachineWatched(scene, settings, m, again, label + " again");
+      ASSERT_TRUE(report.emulated && again.emulated);
+      EXPECT_EQ(report.emulated->makespan, again.emulated->makespan) << label;
+    }
+    const MachineReport &cone = reports[node::LightRayMode::Cone],
+                        &pyramid = reports[node::LightRayMode::Pyramid];
+    std::uint64_t coneTests = 0, pyramidTests = 0, fewer = 0;
+    double coneSeconds = 0, pyramidSeconds = 0;
+    for (std::size_t p = 0; p < cone.processors.size(); ++p) {
+      const node::NodeStats &c = cone.processors[p].node, &y = pyramid.processors[p].node;
+      EXPECT_GE(c.lightObjects, y.lightObjects) << "processor " << p;
+      fewer += y.lightObjects < c.lightObjects;
+      EXPECT_GT(c.lightRaysTracedLocally, 0u) << "processor " << p;
+      EXPECT_EQ(c.lightRaysTracedLocally, y.lightRaysTracedLocally) << "processor " << p;
+      coneTests += c.processed.intersectionTests;
+      pyramidTests += y.processed.intersectionTests;
+      coneSeconds += cone.processors[p].computeSeconds;
+      pyramidSeconds += pyramid.processors[p].computeSeconds;
+    }
+    EXPECT_GT(fewer, 0u) << rows << "x" << columns << ": some pyramid holds fewer objects than its cone";
+    EXPECT_GT(coneTests, pyramidTests) << rows << "x" << columns;
+    EXPECT_GT(coneSeconds, pyramidSeconds) << rows << "x" << columns;
   }
 }
 

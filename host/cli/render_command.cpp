@@ -104,7 +104,7 @@ std::vector<std::pair<std::string, std::string>> settingsOf(const RenderCommand&
                      {"light rays", cmd.lightRays},
                      {"FIFO capacity", std::to_string(fifoRaysFor(cmd.machine))},
                      {"full FIFO", cmd.fifoFull.empty() ? "engine's own" : cmd.fifoFull},
-                     {"cells", cmd.cells},
+                     {"cells", cellsName(cellsFor(cmd.machine))},
                      {"cell level", std::to_string(cmd.machine.cellLevel)}});
   return s;
 }

@@ -119,12 +119,25 @@ node::MachineContext readContext(WireReader& in) {
 void writeLightSources(WireWriter& out, const node::LightSources& sources) {
   out.value(sources.eyeBox);
   out.vector(sources.corners);
+  out.value(std::uint64_t(sources.volumeObjects.size()));
+  for (std::size_t l = 0; l < sources.volumeObjects.size(); ++l) {
+    out.vector(sources.volumeObjects[l]);
+    out.vector(sources.volumeBoxes[l]);
+  }
 }
 
 node::LightSources readLightSources(WireReader& in) {
   node::LightSources sources;
   sources.eyeBox = in.value<core::Box>();
   sources.corners = in.vector<core::Vec3>();
+  const auto lights = in.value<std::uint64_t>();
+  if (lights > core::kMaxLights) throw std::runtime_error("a job gives more light volumes than lights");
+  for (std::uint64_t l = 0; l < lights; ++l) {
+    sources.volumeObjects.push_back(in.vector<std::uint32_t>());
+    sources.volumeBoxes.push_back(in.vector<node::EyeBox>());
+    if (sources.volumeBoxes.back().size() != sources.volumeObjects.back().size())
+      throw std::runtime_error("a job gives a light volume's objects without an eye box each");
+  }
   return sources;
 }
 

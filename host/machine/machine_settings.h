@@ -50,8 +50,7 @@ struct MachineSettings {
   std::optional<std::size_t> queueCapacity;
   // What a send into a full FIFO does (3.5.2); none: the engine's own (fifoFullFor).
   std::optional<node::FifoFull> fifoFull;
-  // How each region holds its objects. Auto: a BVH in every region (node::chosenFor), but the paper's
-  // cells whenever the machine is emulated, whose costs were fitted to them (table 2).
+  // How each region holds its objects; Auto: the engine's own (cellsFor).
   node::CellStructure cells = node::CellStructure::Auto;
   int cellLevel = 2;  // recursive halvings of each pixel area into super-cells (3.3)
   node::LightRayMode lightRays = node::LightRayMode::Pyramid;  // 3.7.2
@@ -84,6 +83,19 @@ struct MachineSettings {
 inline std::size_t fifoRaysFor(const MachineSettings& machine) {
   if (machine.queueCapacity) return *machine.queueCapacity;
   return machine.emulate || machine.mpi ? queues::kPaperFifoCapacity : node::scheduling::kThreadsFifoRays;
+}
+
+// How the regions of a run hold their objects: the structure asked for, or the engine's own: the paper's
+// cells (3.3) on the emulated machine, whose costs were fitted to them (table 2) and whose light rays walk
+// them (3.7.2: a cone's objects against a pyramid's); a BVH on real cores (node::chosenFor) and over MPI.
+inline node::CellStructure cellsFor(const MachineSettings& machine) {
+  if (machine.cells != node::CellStructure::Auto) return machine.cells;
+  return machine.emulate ? node::CellStructure::Paper : node::chosenFor(machine.cells);
+}
+
+// What a report calls a cell structure.
+inline const char* cellsName(node::CellStructure cells) {
+  return cells == node::CellStructure::Paper ? "paper" : cells == node::CellStructure::Bvh ? "bvh" : "auto";
 }
 
 // The flow control of a run: the one asked for, or the emulated machine's own (the iPSC/1 locks, 3.5.2), or

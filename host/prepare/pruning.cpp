@@ -62,9 +62,20 @@ node::LightSources rearLightSourcesOf(const std::vector<std::uint32_t>& rear,
   return withCorners(sources, view);
 }
 
-// The lists a processor's cells index, rewritten into its database's local indices.
+// The lists a processor's cells index, rewritten into its database's local indices: its region's, the
+// rear's and, with the paper's cells, its light volumes'.
 std::vector<std::vector<std::uint32_t>*> cellListsOf(node::NodeSetup& setup) {
-  return {&setup.objects, &setup.rearObjects};
+  std::vector<std::vector<std::uint32_t>*> lists{&setup.objects, &setup.rearObjects};
+  for (node::LightSources* sources : {&setup.lightSources, &setup.rearLightSources})
+    for (std::vector<std::uint32_t>& objects : sources->volumeObjects) lists.push_back(&objects);
+  return lists;
+}
+
+// The paper's cells (3.3) are cut from eye boxes: those of each light volume's objects (global indices).
+void giveVolumeBoxes(node::LightSources& sources, const std::vector<node::EyeBox>& boxes) {
+  sources.volumeBoxes.clear();
+  for (const std::vector<std::uint32_t>& objects : sources.volumeObjects)
+    sources.volumeBoxes.push_back(node::eyeBoxesOf(boxes, objects));
 }
 
 // What the light volumes add to a processor (3.7.2), for its report: their objects summed over the lights,
@@ -130,6 +141,8 @@ void giveDatabases(std::vector<node::NodeSetup>& setups, const std::vector<std::
   parallelFor(int(setups.size()), [&](int p) {
     node::NodeSetup& setup = setups[std::size_t(p)];
     setup.objectBoxes = node::eyeBoxesOf(boxes, setup.objects);
+    for (node::LightSources* sources : {&setup.lightSources, &setup.rearLightSources})
+      giveVolumeBoxes(*sources, boxes);
     node::toLocalIndices(*setup.database, cellListsOf(setup));
   });
 }
@@ -206,8 +219,7 @@ PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& vie
     const node::ColumnSlab region{r.s0, r.s1, r.q0, r.q1, 0, core::kInfinity};
     node::NodeSetup setup;
     setup.id = p;
-    setup.cells = machine.emulate && machine.cells == node::CellStructure::Auto ? node::CellStructure::Paper
-                                                                                : machine.cells;
+    setup.cells = cellsFor(machine);
     setup.cellLevel = machine.cellLevel;
     setup.rearObjects = rear;
     setup.objects = inEyeFrame.query([&](const core::Box& b) {
@@ -230,6 +242,12 @@ PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& vie
         for (std::vector<std::uint32_t>& objects : *lists) held.push_back(&objects);
     }
     heldBy[std::size_t(p)] = node::heldObjectsOf(held, scene.objects.size());
+    // With the paper's cells the light rays traced where they start walk cells of their light's volume's
+    // objects (3.3, 3.7.2): the processor keeps the lists. A BVH's tree over the database finds them.
+    if (lightVolumes && setup.cells == node::CellStructure::Paper) {
+      setup.lightSources.volumeObjects = std::move(lightObjects);
+      setup.rearLightSources.volumeObjects = rearLightObjects;
+    }
     if (holdsWholeScene(heldBy[std::size_t(p)], scene, machine)) heldBy[std::size_t(p)] = everyObject;
     setups[std::size_t(p)] = std::move(setup);
   });

@@ -270,10 +270,11 @@ MachineRun launch(HostPreparation& host, const MachineSettings& machine,
 template <class Real>
 RenderResult renderMachineIn(const core::Scene& scene, const RenderSettings& settings,
                              const MachineSettings& asked, MachineReport* report) {
-  // The engine's own FIFO capacity made explicit, for the engine and the report.
+  // The engine's own FIFO capacity, flow control and cells made explicit, for the engine and the report.
   MachineSettings machine = asked;
   machine.queueCapacity = fifoRaysFor(asked);
   machine.fifoFull = fifoFullFor(asked);
+  machine.cells = cellsFor(asked);
   SynthesisClock clock{Clock::now(), Clock::now(), Clock::now()};
   const core::View view(scene.camera, settings.width, settings.height, settings.sampling,
                         settings.shading.raysPerSample);

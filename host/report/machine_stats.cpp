@@ -74,6 +74,36 @@ LoadBalance loadBalanceOf(const MachineReport& report) {
   return b;
 }
 
+namespace {
+
+// The cell structure used (3.3) and what the regions held: their databases and, with light volumes (3.7.2),
+// the objects those hold (summed over the lights), mean and max over the processors.
+std::string cellsLine(const MachineReport& report) {
+  std::size_t held = 0, heldMax = 0, light = 0, lightMax = 0;
+  for (const ProcessorReport& p : report.processors) {
+    held += p.node.heldObjects;
+    heldMax = std::max(heldMax, p.node.heldObjects);
+    light += p.node.lightObjects;
+    lightMax = std::max(lightMax, p.node.lightObjects);
+  }
+  const double n = double(std::max<std::size_t>(report.processors.size(), 1));
+  const node::CellStructure cells = cellsFor(report.settings);
+  std::string text = cells == node::CellStructure::Paper
+                         ? fmt::format("  cells: paper (3.3's super-cells, level {}, cut by depth)",
+                                       report.settings.cellLevel)
+                         : std::string("  cells: bvh (a BVH per region)");
+  text += fmt::format("; objects held per processor mean {:.1f} max {}", double(held) / n, heldMax);
+  const node::LightRayMode mode = report.settings.lightRays;
+  if (mode == node::LightRayMode::Messages) return text + "; light rays as messages\n";
+  return text + fmt::format(
+                    "; light {}s: objects per light volume, summed over the lights, mean {:.1f} max {}, "
+                    "light rays traced where they start in {}\n",
+                    mode == node::LightRayMode::Cone ? "cone" : "pyramid", double(light) / n, lightMax,
+                    cells == node::CellStructure::Paper ? "the regions' cells" : "a BVH");
+}
+
+}  // namespace
+
 std::string machineTable(const MachineReport& report) {
   std::uint64_t byKind[core::kRayKinds] = {}, forwarded = 0, refused = 0, leftScene = 0, held = 0;
   for (const ProcessorReport& p : report.processors) {
@@ -89,6 +119,7 @@ std::string machineTable(const MachineReport& report) {
       "rays ended with nothing ahead {}\n",
       report.settings.rows, report.settings.columns, fifoRaysFor(report.settings), report.messageBytes,
       byKind[0], byKind[1], byKind[2], byKind[3], forwarded, refused, held, leftScene);
+  text += cellsLine(report);
   const LoadBalance balance = loadBalanceOf(report);
   const bool mapped = !report.hypercubeNode.empty();
   text += fmt::format("  termination: {} token rounds, {} token passes; ", report.tokenRounds,
@@ -239,7 +270,7 @@ nlohmann::json machineJson(const MachineReport& report) {
           {"queueCapacity", fifoRaysFor(report.settings)},
           {"fifoFull", fifoFullFor(report.settings) == node::FifoFull::Lock ? "lock" : "overflow"},
           {"deadlock", deadlockJson(report)},
-          {"cells", std::array{"auto", "paper", "bvh"}[std::size_t(report.settings.cells)]},
+          {"cells", cellsName(report.settings.cells)},
           {"cellLevel", report.settings.cellLevel},
           {"messageBytes", report.messageBytes},
           {"contributionsAccumulated", report.contributionsAccumulated},
