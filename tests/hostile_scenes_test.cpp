@@ -123,6 +123,50 @@ TEST(HostileScenes, AHugeUpVectorStillFramesTheCamera) {
   expectEveryModeDrawsTheReference(scene);
 }
 
+// Class 3, ties: faces drawn twice, one over the other, in different colours (a polygon, a triangle patch, a
+// sphere, and a square half under another). Every ray meets both at the same t; every intersector (brute
+// force, BVHs, the paper's cells, the regions' BVHs) must take the one of smaller index, in both precisions.
+TEST(HostileScenes, CoplanarDuplicatedFacesTakeTheFirstInEveryMode) {
+  const core::Scene scene = core::parseNff(
+      "v\nfrom 3 -6 4\nat 0 0 0\nup 0 0 1\nangle 45\nhither 0.01\nresolution 16 16\n"
+      "l 2 -3 6\nl -4 -2 3\n"
+      "f 1 0 0 0.6 0.3 20 0 0\np 4\n-3 -3 0\n3 -3 0\n3 3 0\n-3 3 0\n"
+      "f 0 1 0 0.6 0.3 20 0 0\np 4\n-3 -3 0\n3 -3 0\n3 3 0\n-3 3 0\n"
+      "f 0 0 1 0.6 0.3 20 0 0\np 4\n0 -3 0\n3 -3 0\n3 0 0\n0 0 0\n"
+      "f 1 1 0 0.5 0.5 65 0 0\npp 3\n-2 -2 0.5 0 0 1\n2 -2 0.5 0 0 1\n0 2 0.5 0 0 1\n"
+      "f 0 1 1 0.5 0.5 65 0 0\npp 3\n-2 -2 0.5 0 0 1\n2 -2 0.5 0 0 1\n0 2 0.5 0 0 1\n"
+      "f 1 0 1 0.7 0.3 10 0 0\ns 0 0 1.5 0.75\nf 1 1 1 0.7 0.3 10 0 0\ns 0 0 1.5 0.75\n",
+      "coplanar_duplicates.nff");
+  // The tie rule's picture: the scene without the later copies (the green square, the blue half under the
+  // red, the cyan patch, the white sphere) draws the same image. Their shadows are the same too: every copy
+  // is opaque.
+  core::Scene firstsOnly = scene;
+  for (const std::size_t later : {6, 4, 2, 1})
+    firstsOnly.objects.erase(firstsOnly.objects.begin() + std::ptrdiff_t(later));
+  for (const core::Precision precision : {core::Precision::Float, core::Precision::Double})
+    EXPECT_TRUE(core::bitIdentical(renderReference(scene, sixteen(precision)).image,
+                                   renderReference(firstsOnly, sixteen(precision)).image))
+        << core::nameOf(precision);
+  expectEveryModeDrawsTheReference(scene);
+}
+
+// Class 3, garbage numbers: patches whose vertex normals are absurd (a component of 1.7e216, whose square
+// overflows; one of 1e-300, whose square underflows; a denormal one), shaded with Ks 0.5 and a shine of 65,
+// over a mirror so that their NaN-prone normals also reflect; a zero normal is refused by the reader. Every
+// mode draws the same image.
+TEST(HostileScenes, PatchesWithAbsurdNormalsAreShadedAlikeInEveryMode) {
+  const core::Scene scene = core::parseNff(
+      "v\nfrom 0 -6 3\nat 0 0 0\nup 0 0 1\nangle 50\nhither 0.01\nresolution 16 16\n"
+      "l 1 -4 5\nl -3 -1 4\n"
+      "f 0.5 0.5 0.5 0.2 0.8 5 0 0\np 4\n-4 -4 -1\n4 -4 -1\n4 4 -1\n-4 4 -1\n"
+      "f 0.9 0.4 0.1 0.5 0.5 65 0 0\n"
+      "pp 3\n-2 -1 0 0 1.7e216 1\n2 -1 0 1 0 1\n0 2 1 0 0 1\n"
+      "pp 3\n-2 -1 0 1e-320 0 0\n0 2 1 1e-300 0 1e-300\n-3 2 0.5 -1.7e216 1.7e216 1.7e216\n"
+      "pp 4\n1 0 -0.5 0 0 1e308\n3 0 -0.5 1e308 1e308 1e308\n3 2 0 0 0 -1\n1 2 0 0 1.7e216 0\n",
+      "absurd_normals.nff");
+  expectEveryModeDrawsTheReference(scene);
+}
+
 // The watchdog: a machine that loses its termination token never terminates; it must end with an error
 // naming its processors and what each still holds, not sleep forever.
 TEST(HostileScenes, AStalledMachineEndsWithAnErrorNamingItsProcessors) {
