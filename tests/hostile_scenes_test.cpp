@@ -10,6 +10,7 @@
 #include "core/intersect.h"
 #include "core/nff_reader.h"
 #include "core/precision.h"
+#include "host/machine/emulated_platform.h"
 #include "host/render/render_machine.h"
 #include "host/render/sequential_renderers.h"
 #include "machine_test_support.h"
@@ -188,6 +189,45 @@ TEST(HostileScenes, AStalledMachineEndsWithAnErrorNamingItsProcessors) {
   });
   EXPECT_NE(message.find("the machine stalled"), std::string::npos) << message;
   EXPECT_NE(message.find("processor 3 holds"), std::string::npos) << message;
+}
+
+// The threads' watchdog, for a processor inside one step all the period: its thread cannot be stopped nor
+// joined, so the program ends, exit status 3, naming it.
+TEST(HostileScenesDeathTest, AStuckProcessorOfTheThreadedMachineEndsTheProgramNamingIt) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const core::Scene scene = core::parseNff(
+      "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n"
+      "l 3 4 -5\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n",
+      "stuck.nff");
+  MachineSettings machine = uniformGrid(2, 2, 512);
+  machine.stallAStepForTests = true;
+  machine.stallPeriod = std::chrono::milliseconds(300);
+  EXPECT_EXIT(renderMachine(scene, sixteen(core::Precision::Double), machine), testing::ExitedWithCode(3),
+              "the machine stalled.*processor 3 has been inside one step");
+}
+
+// The emulated machine's watchdog: a processor whose step never ends stops the simulated clock and every
+// other actor with it; the wall-clock watch beside the maestro ends the simulation with an error naming it.
+TEST(HostileScenes, AStuckProcessorOfTheEmulatedMachineIsNamed) {
+  const core::Scene scene = core::parseNff(
+      "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n"
+      "l 3 4 -5\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n",
+      "stuck.nff");
+  MachineSettings machine = uniformGrid(2, 2, 128);
+  machine.emulate = builtinPlatform("ipsc1");
+  machine.stallAStepForTests = true;
+  machine.stallPeriod = std::chrono::milliseconds(300);
+  MachineReport report;
+  const std::string message = runWatched(watchdogLimit(), "a stuck emulated processor must end", [&] {
+    try {
+      renderMachine(scene, sixteen(core::Precision::Double), machine, &report);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  });
+  EXPECT_NE(message.find("the machine stalled"), std::string::npos) << message;
+  EXPECT_NE(message.find("processor 3 has been inside one step"), std::string::npos) << message;
 }
 
 }  // namespace

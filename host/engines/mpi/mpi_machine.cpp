@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "host/engines/machine_wire.h"
+#include "host/engines/stall_watch.h"
 
 namespace raycube::host {
 
@@ -74,17 +75,25 @@ class HostInbox {
   std::vector<std::optional<RankResults>> results_;
 };
 
-// Polls MPI until done() holds; the host thread naps when nothing arrives (it shares the cores).
+// Polls MPI until done() holds; the host thread naps when nothing arrives (it shares the cores). With a
+// watch, the host's side of the watchdog (host/engines/stall_watch.h): no packet from any rank for a whole
+// period ends the job (every rank reports its processors' progress while they move).
 template <class Done>
-void pumpUntil(queues::MpiLink& link, HostInbox& inbox, Done&& done) {
+void pumpUntil(queues::MpiLink& link, HostInbox& inbox, Done&& done, StallWatch* watch = nullptr) {
   const queues::MpiLink::OnPacket handle = [&](int from, Packet kind, std::span<const char> bytes) {
     inbox.onPacket(from, kind, bytes);
   };
+  std::uint64_t packets = 0;
   while (!done()) {
     const std::size_t n = link.poll(handle);
+    packets += n;
     link.progressSends();
     inbox.reportProgress();
     if (n == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    if (watch && watch->stalled([&](std::size_t) { return packets; }))
+      link.abort(watch->headline() +
+                 "; no rank has sent anything all that time (a ray or the termination "
+                 "token lost, or a rank gone)");
   }
 }
 
@@ -102,6 +111,9 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
   settings.queueCapacity = queueCapacity_;
   settings.rayBatch = rayBatch_;
   settings.jitterSeed = jitterSeed_;
+  settings.stallPeriodMs = stallPeriod_.count();
+  settings.stallAStep = stallAStep_;
+  settings.loseTheToken = loseTheToken_;
   settings.rankOf = ranksOfProcessors(processors, ranks);
   // 3.2 step 2: each rank receives the context and the setups of its own processors; the host keeps no
   // copy of a setup once it has left.
@@ -118,7 +130,9 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
   pumpUntil(link_, inbox, [&] { return inbox.ready() == ranks - 1; });
   if (hooks.synthesisStarts) hooks.synthesisStarts();
   for (int r = 1; r < ranks; ++r) link_.post(r, Packet::Start, {});
-  pumpUntil(link_, inbox, [&] { return inbox.finished() == ranks - 1; });
+  StallWatch watch(1, 2 * stallPeriod_);  // twice: a rank's own watch, naming a stuck processor, speaks first
+  pumpUntil(
+      link_, inbox, [&] { return inbox.finished() == ranks - 1; }, &watch);
   link_.flushSends();
 
   MachineRun run;
