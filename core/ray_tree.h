@@ -5,7 +5,10 @@
 #include <cmath>
 #include <vector>
 
+#include "core/box.h"
 #include "core/contribution_sink.h"
+#include "core/intersect.h"
+#include "core/precision.h"
 #include "core/trace_stats.h"
 #include "core/view.h"
 #include "core/whitted.h"
@@ -17,25 +20,42 @@ struct BasicRayTreeScratch {
   BasicRayOutcome<Real> outcome;
   std::vector<BasicTracedRay<Real>> pending;
   std::vector<Hit> crossed;
-  std::vector<std::uint32_t> lastBlocker;  // per light: Haines' shadow cache
+  std::vector<std::uint32_t> lastBlocker;      // per light: Haines' shadow cache
+  std::vector<BasicBox<Real>> lastBlockerBox;  // its box, padded as the BVHs' leaves hold it
 };
 using RayTreeScratch = BasicRayTreeScratch<double>;
 
 // A database's transmission() leaves the opaque object that blocked a light ray in `crossed`; in a scene
 // without transmission that object is tried first for the next light ray to the same light (shadow
 // cache): it blocks again more often than not, and any blocker gives the same answer, 0.
+// The cache answers only where the database would have met the object: its ray crosses the object's box.
+// Where a hit lies off that box (a small object seen from 1e38 away in double, whose test is noise) a BVH
+// culls what the test alone finds, and the answer depended on which blocker a processor or worker thread
+// had met last: on thread timing (issue 41). A BVH's boxes hold this one, and slab tests grow with their
+// box, so the cache never answers otherwise than the database behind it.
 template <class Database, class Real>
 double lightRayTransmission(const Whitted& shading, const Database& database, const BasicTracedRay<Real>& ray,
-                          TraceCounters& counters, BasicRayTreeScratch<Real>& scratch) {
+                            TraceCounters& counters, BasicRayTreeScratch<Real>& scratch) {
   if (shading.sceneTransmits()) return database.transmission(ray.ray, counters, scratch.crossed);
-  if (scratch.lastBlocker.size() <= ray.light) scratch.lastBlocker.resize(ray.light + 1u, UINT32_MAX);
+  if (scratch.lastBlocker.size() <= ray.light) {
+    scratch.lastBlocker.resize(ray.light + 1u, UINT32_MAX);
+    scratch.lastBlockerBox.resize(ray.light + 1u);
+  }
   std::uint32_t& cached = scratch.lastBlocker[ray.light];
   if (cached != UINT32_MAX) {
     countTest(counters, shading.scene().objects[cached]);
-    if (nearestHit(shading.scene().objects[cached], ray.ray, ray.ray.tMax) < kInfinity) return 0;
+    Real tEnter;
+    if (slabsHit(scratch.lastBlockerBox[ray.light], ray.ray.origin, InverseDirection<Real>(ray.ray.direction),
+                 ray.ray.tMin, ray.ray.tMax, tEnter) &&
+        nearestHit(shading.scene().objects[cached], ray.ray, ray.ray.tMax) < kInfinity)
+      return 0;
   }
   const double transmission = database.transmission(ray.ray, counters, scratch.crossed);
-  if (transmission == 0 && !scratch.crossed.empty()) cached = scratch.crossed.back().object;
+  if (transmission == 0 && !scratch.crossed.empty() && scratch.crossed.back().object != cached) {
+    cached = scratch.crossed.back().object;
+    scratch.lastBlockerBox[ray.light] =
+        boundsOf(shading.scene().objects[cached], kBoxPaddingRelativeOf<Real>).template enclosingIn<Real>();
+  }
   return transmission;
 }
 
@@ -61,7 +81,7 @@ void traceRayTree(const Whitted& shading, const Database& database, const BasicT
     double tEnd = ray.ray.tMax;
     if (ray.kind == RayKind::Light) {
       shading.finishLightRay(ray, lightRayTransmission(shading, database, ray, counters, scratch),
-                           scratch.outcome);
+                             scratch.outcome);
     } else {
       const Hit hit = database.closestHit(ray.ray, counters);
       tEnd = hit.t;

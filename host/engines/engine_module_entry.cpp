@@ -37,10 +37,12 @@ class Engines final : public EngineModule {
         throw std::invalid_argument(
             "the MPI engine runs on rank 0 of mpirun (host/engines/mpi/mpi_session.h)");
       return std::make_unique<MpiMachine<Real>>(*link, fifoRaysFor(settings), settings.rayBatch,
-                                                settings.jitterSeed);
+                                                settings.jitterSeed, settings.stallPeriod,
+                                                settings.stallAStepForTests, settings.loseTheTokenForTests);
     }
     if (!settings.emulate) throw std::invalid_argument("the distributed engines run emulated or over MPI");
-    return std::make_unique<EmulatedMachine<Real>>(*settings.emulate, fifoRaysFor(settings), hypercubeNode);
+    return std::make_unique<EmulatedMachine<Real>>(*settings.emulate, fifoRaysFor(settings), hypercubeNode,
+                                                   settings.stallPeriod, settings.stallAStepForTests);
   }
 };
 

@@ -216,6 +216,9 @@ std::vector<char> encodeJob(const JobSettings& settings, const node::MachineCont
   out.value(settings.queueCapacity);
   out.value(settings.rayBatch);
   out.value(settings.jitterSeed);
+  out.value(settings.stallPeriodMs);
+  out.value(settings.stallAStep);
+  out.value(settings.loseTheToken);
   out.vector(settings.rankOf);
   writeContext(out, context);
   const DatabaseTable databases = databasesOf(setups);
@@ -233,6 +236,9 @@ MachineJob decodeJob(std::span<const char> bytes) {
   settings.queueCapacity = in.value<std::uint64_t>();
   settings.rayBatch = in.value<std::uint64_t>();
   settings.jitterSeed = in.value<unsigned>();
+  settings.stallPeriodMs = in.value<std::int64_t>();
+  settings.stallAStep = in.value<bool>();
+  settings.loseTheToken = in.value<bool>();
   settings.rankOf = in.vector<int>();
   MachineJob job{std::move(settings), readContext(in), {}};
   std::vector<std::shared_ptr<const node::RegionDatabase>> databases(in.value<std::uint64_t>());

@@ -60,7 +60,10 @@ struct JobSettings {
   std::uint64_t queueCapacity = 128;
   std::uint64_t rayBatch = 16;
   unsigned jitterSeed = 0;
-  std::vector<int> rankOf;  // per processor: the rank that runs it
+  std::int64_t stallPeriodMs = 120000;  // MachineSettings::stallPeriod, for each rank's watchdog
+  bool stallAStep = false;              // MachineSettings::stallAStepForTests
+  bool loseTheToken = false;            // MachineSettings::loseTheTokenForTests
+  std::vector<int> rankOf;              // per processor: the rank that runs it
 };
 
 // One rank's share of a render: the settings, the shared context, and the setups of its processors only.

@@ -11,7 +11,7 @@ std::unique_ptr<MachineEngine<Real>> makeEngine(const MachineSettings& settings,
   if (settings.mpi || settings.emulate) return engineModule().make<Real>(settings, hypercubeNode);
   return std::make_unique<ThreadedMachine<Real>>(fifoRaysFor(settings), settings.jitterSeed,
                                                  settings.backlogLimit, settings.stallPeriod,
-                                                 settings.loseTheTokenForTests);
+                                                 settings.loseTheTokenForTests, settings.stallAStepForTests);
 }
 
 template std::unique_ptr<MachineEngine<float>> makeEngine<float>(const MachineSettings&,

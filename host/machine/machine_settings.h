@@ -61,6 +61,9 @@ struct MachineSettings {
   std::chrono::milliseconds stallPeriod{120000};
   // Tests of the watchdog: the processor that would pass the termination token drops it instead.
   bool loseTheTokenForTests = false;
+  // Tests of the watchdog: the last processor never returns from the step that sends its first contribution
+  // (queues/interconnects/step_stalling_transport.h).
+  bool stallAStepForTests = false;
   // Threads: rays waiting for room machine-wide from which no primary ray is shot (node::scheduling::
   // kMachineBacklogLimit); tests lower it to hold primaries back often.
   std::size_t backlogLimit = node::scheduling::kMachineBacklogLimit;

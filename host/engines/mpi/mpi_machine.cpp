@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "host/engines/machine_wire.h"
+#include "host/engines/stall_watch.h"
 #include "host/machine/deadlock.h"
 #include "host/util/clock.h"
 #include "node/scheduling.h"
@@ -99,19 +100,26 @@ class HostInbox {
 };
 
 // Polls MPI until done() holds, calling each() every pass; the host thread naps when nothing arrives (it
-// shares the cores).
-template <class Done, class Each = void (*)()>
-void pumpUntil(
-    queues::MpiLink& link, HostInbox& inbox, Done&& done, Each&& each = [] {}) {
+// shares the cores). With a watch, the host's side of the watchdog (host/engines/stall_watch.h): no packet
+// from any rank for a whole period ends the job (every rank reports its processors' progress while they
+// move).
+template <class Done, class Each>
+void pumpUntil(queues::MpiLink& link, HostInbox& inbox, Done&& done, Each&& each, StallWatch* watch) {
   const queues::MpiLink::OnPacket handle = [&](int from, Packet kind, std::span<const char> bytes) {
     inbox.onPacket(from, kind, bytes);
   };
+  std::uint64_t packets = 0;
   while (!done()) {
     const std::size_t n = link.poll(handle);
+    packets += n;
     link.progressSends();
     inbox.reportProgress();
     each();
     if (n == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    if (watch && watch->stalled([&](std::size_t) { return packets; }))
+      link.abort(watch->headline() +
+                 "; no rank has sent anything all that time (a ray or the termination "
+                 "token lost, or a rank gone)");
   }
 }
 
@@ -129,6 +137,9 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
   settings.queueCapacity = queueCapacity_;
   settings.rayBatch = rayBatch_;
   settings.jitterSeed = jitterSeed_;
+  settings.stallPeriodMs = stallPeriod_.count();
+  settings.stallAStep = stallAStep_;
+  settings.loseTheToken = loseTheToken_;
   settings.rankOf = ranksOfProcessors(processors, ranks);
   // 3.2 step 2: each rank receives the context and the setups of its own processors; the host keeps no
   // copy of a setup once it has left.
@@ -142,7 +153,8 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
     link_.post(r, Packet::Job, std::move(job));
   }
   HostInbox inbox(ranks, processors, hooks);
-  pumpUntil(link_, inbox, [&] { return inbox.ready() == ranks - 1; });
+  pumpUntil(
+      link_, inbox, [&] { return inbox.ready() == ranks - 1; }, [] {}, nullptr);
   if (hooks.synthesisStarts) hooks.synthesisStarts();
   for (int r = 1; r < ranks; ++r) link_.post(r, Packet::Start, {});
   // --fifo-full lock: a deadlock proved stops every rank's processors as termination would (3.6's
@@ -160,8 +172,9 @@ MachineRun MpiMachine<Real>::run(const node::MachineContext& context, std::vecto
     deadlock->wallSeconds = secondsSince(start);
     for (int r = 1; r < ranks; ++r) link_.post(r, Packet::Terminate, {});
   };
+  StallWatch watch(1, 2 * stallPeriod_);  // twice: a rank's own watch, naming a stuck processor, speaks first
   pumpUntil(
-      link_, inbox, [&] { return inbox.finished() == ranks - 1; }, lookForDeadlock);
+      link_, inbox, [&] { return inbox.finished() == ranks - 1; }, lookForDeadlock, &watch);
   link_.flushSends();
 
   MachineRun run;

@@ -4,6 +4,8 @@
 // 3.4): it partitions and prunes as for every engine, sends each rank the context and the setups of its
 // processors only (host/engines/machine_wire.h), accumulates the contributions and gathers the reports. Ranks
 // 1..N-1 run the processors, P/(N-1) each, on threads over queues/interconnects/mpi_interconnect.h.
+#include <chrono>
+
 #include "host/machine/machine_engine.h"
 #include "queues/interconnects/mpi_link.h"
 
@@ -12,8 +14,18 @@ namespace raycube::host {
 template <class Real>
 class MpiMachine final : public MachineEngine<Real> {
  public:
-  MpiMachine(queues::MpiLink& link, std::size_t queueCapacity, std::size_t rayBatch, unsigned jitterSeed)
-      : link_(link), queueCapacity_(queueCapacity), rayBatch_(rayBatch), jitterSeed_(jitterSeed) {}
+  // stallPeriod, stallAStep, loseTheToken: MachineSettings::stallPeriod, stallAStepForTests and
+  // loseTheTokenForTests (the watchdogs and their tests).
+  MpiMachine(queues::MpiLink& link, std::size_t queueCapacity, std::size_t rayBatch, unsigned jitterSeed,
+             std::chrono::milliseconds stallPeriod = std::chrono::milliseconds(120000),
+             bool stallAStep = false, bool loseTheToken = false)
+      : link_(link),
+        queueCapacity_(queueCapacity),
+        rayBatch_(rayBatch),
+        jitterSeed_(jitterSeed),
+        stallPeriod_(stallPeriod),
+        stallAStep_(stallAStep),
+        loseTheToken_(loseTheToken) {}
   MachineRun run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
                  const EngineHooks& hooks) override;
 
@@ -22,6 +34,9 @@ class MpiMachine final : public MachineEngine<Real> {
   std::size_t queueCapacity_;
   std::size_t rayBatch_;
   unsigned jitterSeed_;
+  std::chrono::milliseconds stallPeriod_;
+  bool stallAStep_;
+  bool loseTheToken_;
 };
 
 // Which rank runs each of `processors` processors: contiguous runs of ids (neighbours in a grid numbered

@@ -12,8 +12,11 @@
 #include "host/engines/mpi/mpi_machine.h"
 #include "host/engines/node_thread.h"
 #include "host/engines/processor_thread.h"
+#include "host/engines/stall_watch.h"
 #include "queues/interconnects/jitter_transport.h"
 #include "queues/interconnects/mpi_interconnect.h"
+#include "queues/interconnects/step_stalling_transport.h"
+#include "queues/interconnects/token_losing_transport.h"
 
 namespace raycube::host {
 
@@ -54,6 +57,8 @@ void guarded(Failure& failure, int id, Body&& body) {
 template <class Real>
 struct LocalTransports {
   std::vector<std::unique_ptr<queues::JitterTransport<Real>>> jitters;
+  std::unique_ptr<queues::StepStallingTransport<Real>> stalling;                 // JobSettings::stallAStep
+  std::vector<std::unique_ptr<queues::TokenLosingTransport<Real>>> tokenLosing;  // JobSettings::loseTheToken
   std::vector<node::BasicTransport<Real>*> transports;
   std::vector<int> ids;
   std::uint64_t objectsHeld = 0;
@@ -70,6 +75,15 @@ LocalTransports<Real> localTransports(const MachineJob& job, queues::MpiIntercon
       local.jitters.push_back(std::make_unique<queues::JitterTransport<Real>>(
           *local.transports.back(), job.settings.jitterSeed * 7919u + unsigned(s.id)));
       local.transports.back() = local.jitters.back().get();
+    }
+    if (job.settings.loseTheToken) {
+      local.tokenLosing.push_back(
+          std::make_unique<queues::TokenLosingTransport<Real>>(*local.transports.back()));
+      local.transports.back() = local.tokenLosing.back().get();
+    }
+    if (job.settings.stallAStep && s.id + 1 == int(job.settings.rankOf.size())) {
+      local.stalling = std::make_unique<queues::StepStallingTransport<Real>>(*local.transports.back());
+      local.transports.back() = local.stalling.get();
     }
   }
   return local;
@@ -95,7 +109,7 @@ template <class Real>
 typename queues::MpiInterconnect<Real>::ServeHooks serveHooks(
     const queues::MpiInterconnect<Real>& net, const std::atomic<std::size_t>& running,
     const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes, const std::vector<int>& ids,
-    std::latch& synthesis, const Failure& failure) {
+    std::latch& synthesis, const Failure& failure, StallWatch& stallWatch) {
   typename queues::MpiInterconnect<Real>::ServeHooks hooks;
   hooks.stopped = [&] { return running.load() == 0; };
   hooks.progress = [&] {
@@ -109,8 +123,17 @@ typename queues::MpiInterconnect<Real>::ServeHooks serveHooks(
     if (from == 0 && kind == Packet::Quit)
       throw std::runtime_error("the host (rank 0) stopped during the render");
   };
+  // The rank's side of the watchdog (host/engines/stall_watch.h): a processor of this rank inside one step
+  // while none of them moved for a whole period ends the job, naming it (link.abort).
   hooks.check = [&] {
     if (failure.failed()) throw std::runtime_error(failure.cause());
+    if (!stallWatch.stalled([&](std::size_t k) { return nodes[k] ? nodes[k]->stepsWorked() : 0; })) return;
+    std::string busy;
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+      if (nodes[k] && nodes[k]->stepping()) busy += (busy.empty() ? "" : ", ") + std::to_string(ids[k]);
+    if (!busy.empty())
+      throw std::runtime_error(stallWatch.headline() + "; processor " + busy +
+                               " has been inside one step all that time (a walk that does not end)");
   };
   return hooks;
 }
@@ -178,7 +201,8 @@ void runJob(MachineJob job, queues::MpiLink& link, std::uint64_t jobBytes) {
     subdivided.wait();
     if (failure.failed()) throw std::runtime_error(failure.cause());
     link.post(0, Packet::Ready, {});
-    net.serve(serveHooks<Real>(net, running, nodes, ids, synthesis, failure));
+    StallWatch stallWatch(local, std::chrono::milliseconds(job.settings.stallPeriodMs));
+    net.serve(serveHooks<Real>(net, running, nodes, ids, synthesis, failure, stallWatch));
   } catch (const std::exception& e) {
     link.abort(e.what());  // threads may be waiting for rays that will never come: end the job here
   }

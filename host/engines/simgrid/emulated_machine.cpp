@@ -5,18 +5,24 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <simgrid/s4u.hpp>
 #include <stdexcept>
+#include <thread>
 #include <type_traits>
 
 #include "host/engines/machine_wire.h"
+#include "host/engines/stall_watch.h"
 #include "host/engines/wire_codec.h"
 #include "host/util/clock.h"
 #include "queues/host_channel.h"
 #include "queues/interconnects/simgrid_interconnect.h"
+#include "queues/interconnects/step_stalling_transport.h"
 
 namespace raycube::host {
 namespace {
@@ -209,6 +215,54 @@ struct SimulationInput {
   const EmulatedPlatform& platform;
   std::size_t queueCapacity;
   const std::vector<std::uint32_t>& cubeNode;
+  std::chrono::milliseconds stallPeriod;
+  bool stallAStep;
+};
+
+// The emulated machine's watchdog (host/engines/stall_watch.h), on a thread of the simulation's process
+// beside the maestro: actors share its one thread, so a step that does not end stops the simulated clock
+// and every other actor with it, and only the wall clock still moves. When no processor has moved for a
+// whole period and one is inside a step, it sends the failure naming that processor and ends the
+// simulation's process. A machine in which every actor waits is no stall here: SimGrid ends such a run by
+// itself (requireCompleted, or a deadlock with --fifo-full lock).
+template <class Real>
+class SimulationWatch {
+ public:
+  SimulationWatch(const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes,
+                  std::chrono::milliseconds period, PipeWriter& out)
+      : watcher_([this, &nodes, period, &out] { watch(nodes, period, out); }) {}
+  ~SimulationWatch() {
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    watcher_.join();
+  }
+
+ private:
+  void watch(const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes,
+             std::chrono::milliseconds period, PipeWriter& out) {
+    StallWatch stallWatch(nodes.size(), period);
+    std::unique_lock lock(mutex_);
+    while (!wake_.wait_for(lock, stallLookEvery(period), [&] { return done_; })) {
+      if (!stallWatch.stalled([&](std::size_t p) { return nodes[p]->stepsWorked(); })) continue;
+      std::string busy;
+      for (std::size_t p = 0; p < nodes.size(); ++p)
+        if (nodes[p]->stepping()) busy += (busy.empty() ? "" : ", ") + std::to_string(p);
+      if (busy.empty()) continue;
+      // The maestro's thread is inside that step, not writing to the pipe: the record goes out whole.
+      out.value(Record::Failure);
+      out.string(stallWatch.headline() + " of wall-clock time; processor " + busy +
+                 " has been inside one step all that time (a walk that does not end)");
+      _exit(3);
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread watcher_;  // last: it reads the members above
 };
 
 // SimGrid's settings: the CM02 network model without cross-traffic, so that a platform's numbers mean what
@@ -322,10 +376,16 @@ void simulate(SimulationInput in, PipeWriter& out) {
   queues::SimGridInterconnect<Real> net(in.context.regions, wiring);
 
   const int processors = int(in.setups.size());
+  std::optional<queues::StepStallingTransport<Real>> stalling;
+  if (in.stallAStep) stalling.emplace(net.endpoint(processors - 1));
   std::vector<std::unique_ptr<node::LogicalProcessor<Real>>> nodes;
-  for (int p = 0; p < processors; ++p)
+  for (int p = 0; p < processors; ++p) {
+    node::BasicTransport<Real>& transport = stalling && p == processors - 1
+                                                ? static_cast<node::BasicTransport<Real>&>(*stalling)
+                                                : net.endpoint(p);
     nodes.push_back(
-        std::make_unique<node::LogicalProcessor<Real>>(in.context, std::move(in.setups[p]), net.endpoint(p)));
+        std::make_unique<node::LogicalProcessor<Real>>(in.context, std::move(in.setups[p]), transport));
+  }
   out.value(Record::SynthesisStarts);  // every node has subdivided its region
   std::vector<ProcessorReport> reports(static_cast<std::size_t>(processors));
   std::vector<Timeline> timelines(static_cast<std::size_t>(processors));
@@ -351,7 +411,10 @@ void simulate(SimulationInput in, PipeWriter& out) {
     hostDone = true;
   });
   net.startCommunicationTasks();
-  engine->run();
+  {
+    const SimulationWatch<Real> watch(nodes, in.stallPeriod, out);
+    engine->run();
+  }
   // SimGrid ends a run where no actor can move as it ends a finished one (it says so on stderr): a cycle
   // of processors locked on each other's full FIFOs (--fifo-full lock) is the run's result.
   std::vector<int> lockedOn;
@@ -537,7 +600,9 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
   }
   MachineRun run = inChildProcess<MachineRun>(
       [&](PipeWriter& out) {
-        simulate<Real>(SimulationInput{context, setups, platform_, queueCapacity_, cubeNode_}, out);
+        simulate<Real>(
+            SimulationInput{context, setups, platform_, queueCapacity_, cubeNode_, stallPeriod_, stallAStep_},
+            out);
       },
       [&](PipeReader& in) { return receiveResults(in, hooks); });
   run.emulated->preprocessing = pre;

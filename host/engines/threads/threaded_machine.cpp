@@ -15,6 +15,7 @@
 #include "node/scheduling.h"
 #include "queues/interconnects/jitter_transport.h"
 #include "queues/interconnects/shared_memory_interconnect.h"
+#include "queues/interconnects/step_stalling_transport.h"
 #include "queues/interconnects/token_losing_transport.h"
 
 namespace raycube::host {
@@ -66,6 +67,10 @@ MachineRun ThreadedMachine<Real>::run(const node::MachineContext& context,
     }
     if (loseTheToken_) {
       wrappers.push_back(std::make_unique<queues::TokenLosingTransport<Real>>(*transports.back()));
+      transports.back() = wrappers.back().get();
+    }
+    if (stallAStep_ && id == processors - 1) {
+      wrappers.push_back(std::make_unique<queues::StepStallingTransport<Real>>(*transports.back()));
       transports.back() = wrappers.back().get();
     }
   }

@@ -11,15 +11,17 @@ namespace raycube::host {
 template <class Real>
 class ThreadedMachine final : public MachineEngine<Real> {
  public:
-  // stallPeriod: MachineSettings::stallPeriod; loseTheToken: MachineSettings::loseTheTokenForTests.
+  // stallPeriod: MachineSettings::stallPeriod; loseTheToken, stallAStep: MachineSettings::
+  // loseTheTokenForTests and stallAStepForTests.
   ThreadedMachine(std::size_t queueCapacity, unsigned jitterSeed, std::size_t backlogLimit,
                   std::chrono::milliseconds stallPeriod = std::chrono::milliseconds(120000),
-                  bool loseTheToken = false)
+                  bool loseTheToken = false, bool stallAStep = false)
       : queueCapacity_(queueCapacity),
         jitterSeed_(jitterSeed),
         backlogLimit_(backlogLimit),
         stallPeriod_(stallPeriod),
-        loseTheToken_(loseTheToken) {}
+        loseTheToken_(loseTheToken),
+        stallAStep_(stallAStep) {}
   MachineRun run(const node::MachineContext& context, std::vector<node::NodeSetup> setups,
                  const EngineHooks& hooks) override;
 
@@ -29,6 +31,7 @@ class ThreadedMachine final : public MachineEngine<Real> {
   std::size_t backlogLimit_;  // waiting rays that hold primaries back (MachineSettings::backlogLimit)
   std::chrono::milliseconds stallPeriod_;
   bool loseTheToken_;
+  bool stallAStep_;
 };
 
 }  // namespace raycube::host
