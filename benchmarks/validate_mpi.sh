@@ -67,16 +67,21 @@ rule="|---|---|---|---|---|---|---|---|---|"
   echo "$header"
   echo "$rule"
 } | tee -a "$out_md"
-for scene in "${scenes[@]}"; do
-  for p in "${procs[@]}"; do
-    for r in "${ranks_list[@]}"; do
-      read -r mt mw <<<"$(measured "$scene" "$p" "$r")"
-      measuredOf[$scene/$p/$r]="$mt $mw"
-      read -r ps pe <<<"$(predicted "$work/cal/costs" "$scene" "$p" "$r")"
-      echo "| $scene | $p | $r | $mt | $ps | $(ratio "$ps" "$mt") | $mw | $pe | $(ratio "$pe" "$mw") |" | tee -a "$out_md"
+# rows COSTS: a row per configuration, measured once (the first table) and predicted with COSTS.
+rows() {
+  local scene p r mt mw ps pe
+  for scene in "${scenes[@]}"; do
+    for p in "${procs[@]}"; do
+      for r in "${ranks_list[@]}"; do
+        [ -n "${measuredOf[$scene/$p/$r]:-}" ] || measuredOf[$scene/$p/$r]=$(measured "$scene" "$p" "$r")
+        read -r mt mw <<<"${measuredOf[$scene/$p/$r]}"
+        read -r ps pe <<<"$(predicted "$1" "$scene" "$p" "$r")"
+        echo "| $scene | $p | $r | $mt | $ps | $(ratio "$ps" "$mt") | $mw | $pe | $(ratio "$pe" "$mw") |" | tee -a "$out_md"
+      done
     done
   done
-done
+}
+rows "$work/cal/costs"
 
 # One scene only: cluster.costs' flop-equivalents, the calibrated messages and accumulation, and the node
 # speed that makes the first configuration's synthesis its measured tracing.
@@ -99,15 +104,7 @@ echo "nodeSpeed $speed" >>"$work/one-fit.costs"
   echo "$header"
   echo "$rule"
 } | tee -a "$out_md"
-for scene in "${scenes[@]}"; do
-  for p in "${procs[@]}"; do
-    for r in "${ranks_list[@]}"; do
-      read -r mt mw <<<"${measuredOf[$scene/$p/$r]}"
-      read -r ps pe <<<"$(predicted "$work/one-fit.costs" "$scene" "$p" "$r")"
-      echo "| $scene | $p | $r | $mt | $ps | $(ratio "$ps" "$mt") | $mw | $pe | $(ratio "$pe" "$mw") |" | tee -a "$out_md"
-    done
-  done
-done
+rows "$work/one-fit.costs"
 echo
 echo "calibration:"
 cat "$work/cal/costs"

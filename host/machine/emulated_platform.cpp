@@ -169,6 +169,9 @@ EmulatedPlatform userPlatform(const std::filesystem::path& platformFile, const s
   p.name = platformFile.filename().string();
   p.platformFile = platformFile;
   if (!costs.empty()) applyCostFile(costs, p);
+  if (p.computeUnit == ComputeUnit::Seconds && p.nodeSpeed)
+    throw std::runtime_error(fmt::format("{}: nodeSpeed has no meaning for costs in seconds (unit seconds)",
+                                         costs.string()));
   return p;
 }
 

@@ -203,6 +203,9 @@ void SimGridInterconnect<Real>::route(std::uint32_t at, std::unique_ptr<Packet> 
 template <class Real>
 void SimGridInterconnect<Real>::communicationTask(std::uint32_t cubeNode) {
   s4u::Mailbox* mailbox = s4u::Mailbox::by_name("cube-" + std::to_string(cubeNode));
+  // A permanent receiver: a packet starts crossing the links when it is sent, not when this task gets to
+  // it (SimGrid starts a transfer when a get matches it); otherwise one packet at a time pays the latency.
+  mailbox->set_receiver(s4u::Actor::self());
   for (;;) {
     std::unique_ptr<Packet> packet(mailbox->get<Packet>());
     if (wiring_.cubeNode[packet->to] == cubeNode) {
@@ -239,6 +242,7 @@ void SimGridInterconnect<Real>::deliver(std::unique_ptr<Packet> packet) {
 template <class Real>
 void SimGridInterconnect<Real>::serveHost(core::ContributionSink& sink) {
   s4u::Mailbox* mailbox = s4u::Mailbox::by_name(kCubeManagerHost);
+  mailbox->set_receiver(s4u::Actor::self());  // as communicationTask: packets cross while others arrive
   std::uint64_t expected = 0, received = 0;
   for (int finished = 0; finished < regions_.processors() || received < expected;) {
     std::unique_ptr<Packet> packet(mailbox->get<Packet>());
