@@ -104,7 +104,7 @@ LogicalProcessor<Real>::LogicalProcessor(const MachineContext& context, NodeSetu
   if (stats_.bvh)
     regionBvh_ = std::make_unique<const core::BasicBvh<Real>>(core::bvhOver<Real>(
         scene_, shading_, setup_.objects, setup_.sceneShape.get(), setup_.database->wholeIdOf()));
-  if (setup_.lightRays != LightRayMode::Messages && structure_ == CellStructure::Paper) {
+  if (setup_.lightRays != LightRayMode::Messages && walksLightCells()) {
     requireLightVolumes(setup_, scene_.lights.size());
     const LightSources* sources[2] = {&setup_.lightSources, &setup_.rearLightSources};
     for (int s = 0; s < 2; ++s) {
@@ -487,7 +487,7 @@ template <class Real>
 double LogicalProcessor<Real>::traceWhereItStarts(const TracedRay& ray, const EyeFrameRay& er,
                                                   const LightSources& from) {
   ++stats_.lightRaysTracedLocally;
-  if (structure_ == CellStructure::Paper) return walkLightVolume(ray, er, from);
+  if (walksLightCells()) return walkLightVolume(ray, er, from);
   return core::lightRayTransmission(shading_, *lightRayTree_, ray, stats_.processed, lightRayScratch_);
 }
 

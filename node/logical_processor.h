@@ -46,6 +46,11 @@ struct NodeSetup {
   // holds every object their light volumes meet, and such rays are traced where they start; light rays
   // starting elsewhere travel as messages.
   LightRayMode lightRays = LightRayMode::Messages;
+  // With the paper's cells, whether such rays walk cells of their light's volume (the host gives each
+  // light's volume in the light sources) rather than a tree over what the processor holds: the emulated
+  // machine's choice, whose costs count what the walk meets. On thousands of objects the volumes' depth cuts
+  // explode (gears 4 at 32x32 on 4x4: 0.6 s became 31 s and 0.9 GB), so real cores keep the tree.
+  bool lightRaysWalkCells = false;
   LightSources lightSources;
   // The same for light rays starting behind the eye (on a rear object), identical for every processor.
   LightSources rearLightSources;
@@ -145,6 +150,7 @@ class LogicalProcessor {
   const LightSources* lightSourcesHolding(const core::Vec3& eyeFrameOrigin) const;
   double traceWhereItStarts(const TracedRay& ray, const EyeFrameRay& er, const LightSources& from);
   double walkLightVolume(const TracedRay& ray, const EyeFrameRay& er, const LightSources& from);
+  bool walksLightCells() const { return setup_.lightRaysWalkCells && structure_ == CellStructure::Paper; }
   bool beyondScene(const core::BasicRay<Real>& ray, double t, double tMax) const;
   bool nothingAhead(const EyeFrameRay& er, const core::BasicRay<Real>& ray, int next, double t,
                     double tMax) const;
@@ -185,10 +191,10 @@ class LogicalProcessor {
   // regions. Holding more than a query needs costs it nothing but box tests: an object off a light ray's
   // segment never has a hit on it.
   std::optional<LightRayTree<Real>> lightRayTree_;
-  // With the paper's cells those light rays walk cells instead (3.3): per light volume (the region's
-  // sources, then the rear's; light by light), the region's super-cells with their outer faces at infinity,
-  // listing the volume's objects and cut by their depths; behind the eye plane, the volume's objects
-  // reaching there.
+  // With NodeSetup::lightRaysWalkCells those light rays walk cells instead (3.3): per light volume (the
+  // region's sources, then the rear's; light by light), the region's super-cells with their outer faces at
+  // infinity, listing the volume's objects and cut by their depths; behind the eye plane, the volume's
+  // objects reaching there.
   std::array<std::vector<RegionCells>, 2> lightCells_;
   std::array<std::vector<std::vector<std::uint32_t>>, 2> lightRearObjects_;
   // With CellStructure::Bvh, the region's own objects, the only ones a hit inside the region can be on.

@@ -44,6 +44,10 @@ node::NodeSetup setupOf(const core::Scene& scene, const node::MachineContext& co
   s.lightRays = node::LightRayMode::Pyramid;
   s.lightSources.eyeBox.extend(core::Vec3(1, 2, 3));
   s.lightSources.corners = {core::Vec3(4, 5, 6)};
+  // The paper's cells in emulated time: each light's volume travels, for its cells.
+  s.lightRaysWalkCells = true;
+  s.lightSources.volumeObjects = {{1, 4}, {}};
+  s.lightSources.volumeBoxes = {node::eyeBoxesOf(boxes, {1, 4}), {}};
   // Light volumes holding objects 2, 3 and 5 besides the region's (only their counts travel).
   std::vector<std::uint32_t> lightObjects{2, 3, 5};
   s.lightObjects = 3;
@@ -125,6 +129,11 @@ TEST(MachineWireTest, JobComesBackAsItLeft) {
   EXPECT_EQ(s.lightRays, setup.lightRays);
   EXPECT_TRUE(sameBytes(s.lightSources.eyeBox, setup.lightSources.eyeBox));
   EXPECT_EQ(s.lightSources.corners, setup.lightSources.corners);
+  EXPECT_EQ(s.lightRaysWalkCells, setup.lightRaysWalkCells);
+  EXPECT_EQ(s.lightSources.volumeObjects, setup.lightSources.volumeObjects);
+  ASSERT_EQ(s.lightSources.volumeBoxes.size(), 2u);
+  ASSERT_EQ(s.lightSources.volumeBoxes[0].size(), 2u);
+  EXPECT_TRUE(sameBytes(s.lightSources.volumeBoxes[0][1], setup.lightSources.volumeBoxes[0][1]));
   EXPECT_EQ(s.lightObjects, setup.lightObjects);
   EXPECT_EQ(s.extraLightObjects, setup.extraLightObjects);
   EXPECT_EQ(s.database->globalIds, setup.database->globalIds);

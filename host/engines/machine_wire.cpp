@@ -178,6 +178,7 @@ void writeSetup(WireWriter& out, const node::NodeSetup& setup, const DatabaseTab
   out.vector(setup.objectBoxes);
   out.vector(setup.rearObjects);
   out.value(setup.lightRays);
+  out.value(setup.lightRaysWalkCells);
   writeLightSources(out, setup.lightSources);
   writeLightSources(out, setup.rearLightSources);
   out.value(std::uint64_t(setup.lightObjects));
@@ -200,6 +201,7 @@ node::NodeSetup readSetup(WireReader& in,
     throw std::runtime_error("a job gives a processor's objects without an eye box each");
   setup.rearObjects = in.vector<std::uint32_t>();
   setup.lightRays = in.value<node::LightRayMode>();
+  setup.lightRaysWalkCells = in.value<bool>();
   setup.lightSources = readLightSources(in);
   setup.rearLightSources = readLightSources(in);
   setup.lightObjects = in.value<std::uint64_t>();

@@ -242,9 +242,11 @@ PrunedDatabase pruneDatabase(const core::Whitted& shading, const core::View& vie
         for (std::vector<std::uint32_t>& objects : *lists) held.push_back(&objects);
     }
     heldBy[std::size_t(p)] = node::heldObjectsOf(held, scene.objects.size());
-    // With the paper's cells the light rays traced where they start walk cells of their light's volume's
-    // objects (3.3, 3.7.2): the processor keeps the lists. A BVH's tree over the database finds them.
-    if (lightVolumes && setup.cells == node::CellStructure::Paper) {
+    // With the paper's cells in emulated time the light rays traced where they start walk cells of their
+    // light's volume's objects (3.3, 3.7.2): the processor keeps the lists. Elsewhere a tree over the
+    // database finds them (node::NodeSetup::lightRaysWalkCells).
+    setup.lightRaysWalkCells = lightVolumes && setup.cells == node::CellStructure::Paper && machine.emulate;
+    if (setup.lightRaysWalkCells) {
       setup.lightSources.volumeObjects = std::move(lightObjects);
       setup.rearLightSources.volumeObjects = rearLightObjects;
     }
