@@ -19,10 +19,10 @@ namespace {
 using testing_support::renderMachineWatched;
 using testing_support::settingsFor;
 
-const std::vector<std::string> kCostKeys{"sphereTest",   "coneTest",         "polygonTest", "polygonVertex",
-                                         "patchTest",    "cellStep",         "raySegment",  "rayFinished",
-                                         "raySpawned",   "contribution",     "sendSeconds", "receiveSeconds",
-                                         "relaySeconds", "accumulateSeconds"};
+const std::vector<std::string> kCostKeys{
+    "sphereTest",   "coneTest",    "polygonTest", "polygonVertex", "patchTest",        "cellStep",
+    "raySegment",   "rayFinished", "raySpawned",  "contribution",  "sendSeconds",      "receiveSeconds",
+    "relaySeconds", "segmentClip", "regionTest",  "mappingStep",   "accumulateSeconds"};
 
 std::filesystem::path freshFolder(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
@@ -56,7 +56,8 @@ TEST(Calibration, WhatItWritesParsesBackToTheSameCostsInSeconds) {
                             &p.costs.polygonVertex, &p.costs.patchTest,        &p.costs.cellStep,
                             &p.costs.raySegment,    &p.costs.rayFinished,      &p.costs.raySpawned,
                             &p.costs.contribution,  &p.costs.sendSeconds,      &p.costs.receiveSeconds,
-                            &p.costs.relaySeconds,  &p.costs.accumulateSeconds};
+                            &p.costs.relaySeconds,  &p.costs.segmentClip,      &p.costs.regionTest,
+                            &p.costs.mappingStep,   &p.costs.accumulateSeconds};
   for (std::size_t i = 0; i < kCostKeys.size(); ++i) {
     EXPECT_EQ(*fields[i], c.costs[i].value) << kCostKeys[i];
     again.costs[i].value = *fields[i];
@@ -98,6 +99,9 @@ TEST(Calibration, AMeasuredFileHasEveryCostInItsPlace) {
   const auto [xml, costs] = writeCalibration(c, freshFolder("measured"));
   const EmulatedPlatform p = userPlatform(xml, costs);
   EXPECT_EQ(p.computeUnit, ComputeUnit::Seconds);
+  // The host's prices are seconds too, a machine's, not the flop-equivalent hand counts read as seconds.
+  for (double price : {p.costs.segmentClip, p.costs.regionTest, p.costs.mappingStep})
+    EXPECT_TRUE(price > 0 && price < 1e-4) << price;
   EXPECT_GT(p.costs.sphereTest, 0);
 }
 

@@ -380,6 +380,14 @@ double startupSeconds(const std::filesystem::path& program, int ranks, int repet
   return median(each);
 }
 
+// This machine's seconds per flop-equivalent of the hand counts (CostTable's defaults): the median over the
+// primitive tests and the box test, each measured against its own count.
+double secondsPerFlopEquivalent(const PrimitiveCosts& p, double box) {
+  const CostTable counts;
+  return median({p.sphere / counts.sphereTest, p.cone / counts.coneTest, p.polygon / counts.polygonTest,
+                 p.patch / counts.patchTest, box / counts.cellStep});
+}
+
 std::string seconds(double s) {
   return fmt::format("{:.4g}", s);
 }
@@ -412,6 +420,13 @@ Calibration calibrateThisMachine(const CalibrationOptions& options) {
   table.receiveSeconds = receive;
   table.relaySeconds = send + receive;
   table.accumulateSeconds = accumulateSeconds(n);
+  // The host's own preprocessing prices are not timed here: their hand counts at this machine's seconds
+  // per flop-equivalent (secondsPerFlopEquivalent).
+  const double secondsPerFlop = secondsPerFlopEquivalent(p, box);
+  const CostTable counts;
+  table.segmentClip = counts.segmentClip * secondsPerFlop;
+  table.regionTest = counts.regionTest * secondsPerFlop;
+  table.mappingStep = counts.mappingStep * secondsPerFlop;
   // What the microbenchmarks leave out of a real render (taking a ray up in a region, the scheduler, the
   // FIFOs' bookkeeping, cache misses) per ray segment: balls 2 at 128x128 on one processor.
   const core::Scene balls2 = core::makeBalls(2);
@@ -457,6 +472,14 @@ Calibration calibrateThisMachine(const CalibrationOptions& options) {
           "the other half",
       },
       {"relaySeconds", table.relaySeconds, "a receive and a send (routing direct: no relaying happens)"},
+      {"segmentClip", table.segmentClip,
+       fmt::format("not timed: the host's hand count ({} flop-equivalents) x {} s per flop-equivalent, "
+                   "the median of the primitive and box tests against their hand counts",
+                   counts.segmentClip, seconds(secondsPerFlop))},
+      {"regionTest", table.regionTest,
+       fmt::format("not timed: {} flop-equivalents x the same", counts.regionTest)},
+      {"mappingStep", table.mappingStep,
+       fmt::format("not timed: {} flop-equivalents x the same", counts.mappingStep)},
       {"accumulateSeconds", table.accumulateSeconds,
        "the host: a contribution added to a 512x512 frame buffer (host::Framebuffer::add), random pixels, " +
            median}};
