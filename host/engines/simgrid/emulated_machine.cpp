@@ -449,10 +449,17 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
   ::close(fds[1]);
   // The watchdog: no processor moved for a whole period while one is inside a step. Its message replaces
   // the signal's, which only says the watchdog ended the simulation.
+  // From the start of synthesis: setting up the processors in the child (their cells) moves no step.
   StallWatch stallWatch(steps.size(), stallPeriod_);
-  bool stalled = false;
+  bool synthesis = false, stalled = false;
+  EngineHooks watched = hooks;
+  watched.synthesisStarts = [&] {
+    synthesis = true;
+    stallWatch = StallWatch(steps.size(), stallPeriod_);
+    if (hooks.synthesisStarts) hooks.synthesisStarts();
+  };
   PipeReader in(fds[0], stallLookEvery(stallPeriod_), [&] {
-    if (!stallWatch.stalled([&](std::size_t p) { return steps[p].stepsWorked.load(); })) return;
+    if (!synthesis || !stallWatch.stalled([&](std::size_t p) { return steps[p].stepsWorked.load(); })) return;
     std::string busy;
     for (std::size_t p = 0; p < steps.size(); ++p)
       if (steps[p].stepping.load()) busy += (busy.empty() ? "" : ", ") + std::to_string(p);
@@ -465,7 +472,7 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
   std::optional<MachineRun> run;
   std::string failure;
   try {
-    run = receiveResults(in, hooks);
+    run = receiveResults(in, watched);
   } catch (const std::exception& e) {
     failure = e.what();
   }
