@@ -29,6 +29,14 @@ RenderSettings sixteen(core::Precision precision) {
   return s;
 }
 
+// A red sphere under one light: for the watchdogs' tests, whose machines stall whatever they render.
+core::Scene oneSphere(const std::string& name) {
+  return core::parseNff(
+      "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n"
+      "l 3 4 -5\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n",
+      name);
+}
+
 // Every machine configuration the differential fuzzer runs (tests/fuzz/differential_oracle.cpp).
 std::vector<std::pair<std::string, MachineSettings>> machines() {
   MachineSettings bsp;
@@ -199,10 +207,7 @@ TEST(HostileScenes, TheShadowCacheLeavesNoTimingInTheImage) {
 // The watchdog: a machine that loses its termination token never terminates; it must end with an error
 // naming its processors and what each still holds, not sleep forever.
 TEST(HostileScenes, AStalledMachineEndsWithAnErrorNamingItsProcessors) {
-  const core::Scene scene = core::parseNff(
-      "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n"
-      "l 3 4 -5\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n",
-      "stall.nff");
+  const core::Scene scene = oneSphere("stall.nff");
   MachineSettings machine = uniformGrid(2, 2, 512);
   machine.loseTheTokenForTests = true;
   machine.stallPeriod = std::chrono::milliseconds(200);
@@ -223,10 +228,7 @@ TEST(HostileScenes, AStalledMachineEndsWithAnErrorNamingItsProcessors) {
 // joined, so the program ends, exit status 3, naming it.
 TEST(HostileScenesDeathTest, AStuckProcessorOfTheThreadedMachineEndsTheProgramNamingIt) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
-  const core::Scene scene = core::parseNff(
-      "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n"
-      "l 3 4 -5\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n",
-      "stuck.nff");
+  const core::Scene scene = oneSphere("stuck.nff");
   MachineSettings machine = uniformGrid(2, 2, 512);
   machine.stallAStepForTests = true;
   machine.stallPeriod = std::chrono::milliseconds(300);
@@ -237,10 +239,7 @@ TEST(HostileScenesDeathTest, AStuckProcessorOfTheThreadedMachineEndsTheProgramNa
 // The emulated machine's watchdog: a processor whose step never ends stops the simulated clock and every
 // other actor with it; the wall-clock watch beside the maestro ends the simulation with an error naming it.
 TEST(HostileScenes, AStuckProcessorOfTheEmulatedMachineIsNamed) {
-  const core::Scene scene = core::parseNff(
-      "v\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 30\nhither 0.001\nresolution 8 8\n"
-      "l 3 4 -5\nf 1 0 0 1 0 0 0 0\ns 0 0 0 1\n",
-      "stuck.nff");
+  const core::Scene scene = oneSphere("stuck.nff");
   MachineSettings machine = uniformGrid(2, 2, 128);
   machine.emulate = builtinPlatform("ipsc1");
   machine.stallAStepForTests = true;

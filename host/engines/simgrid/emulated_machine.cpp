@@ -1,19 +1,21 @@
 #include "host/engines/simgrid/emulated_machine.h"
 
 #include <fmt/format.h>
+#include <poll.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
-#include <condition_variable>
+#include <csignal>
 #include <cstring>
 #include <functional>
 #include <memory>
-#include <mutex>
+#include <new>
 #include <optional>
 #include <simgrid/s4u.hpp>
 #include <stdexcept>
-#include <thread>
 #include <type_traits>
 
 #include "host/engines/machine_wire.h"
@@ -52,9 +54,16 @@ class PipeSink {
 // The parent's end: the simulation's results, until the child closes it.
 class PipeSource {
  public:
-  explicit PipeSource(int fd) : fd_(fd) {}
+  // whileQuiet() is called every `look` that nothing arrives (the watchdog); it may throw.
+  PipeSource(int fd, std::chrono::milliseconds look, std::function<void()> whileQuiet)
+      : fd_(fd), look_(look), whileQuiet_(std::move(whileQuiet)) {}
   void read(char* data, std::size_t n) {
     while (n > 0) {
+      pollfd ready{fd_, POLLIN, 0};
+      if (::poll(&ready, 1, int(look_.count())) == 0) {
+        whileQuiet_();
+        continue;
+      }
       const ssize_t r = ::read(fd_, data, n);
       if (r <= 0) throw std::runtime_error("the simulation ended before sending all its results");
       data += r;
@@ -65,10 +74,41 @@ class PipeSource {
 
  private:
   int fd_;
+  std::chrono::milliseconds look_;
+  std::function<void()> whileQuiet_;
 };
 
 using PipeWriter = WireEncoder<PipeSink>;
 using PipeReader = WireDecoder<PipeSource>;
+
+// The emulated machine's watchdog (host/engines/stall_watch.h) runs in the parent, on the wall clock:
+// actors share the simulation's one thread, so a step that does not end stops the simulated clock and
+// every other actor with it. The child shows each processor's steps and whether it is inside one in memory
+// shared across the fork (no thread may start in the child of a threaded process).
+struct SharedStep {
+  std::atomic<std::uint64_t> stepsWorked{0};
+  std::atomic<bool> stepping{false};
+};
+
+class SharedSteps {
+ public:
+  explicit SharedSteps(std::size_t processors) : count_(processors) {
+    void* memory = ::mmap(nullptr, bytes(), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (memory == MAP_FAILED) throw std::runtime_error("cannot map memory shared with the simulation");
+    steps_ = static_cast<SharedStep*>(memory);
+    for (std::size_t p = 0; p < processors; ++p) new (&steps_[p]) SharedStep;
+  }
+  ~SharedSteps() { ::munmap(steps_, bytes()); }
+  SharedSteps(const SharedSteps&) = delete;
+  SharedSteps& operator=(const SharedSteps&) = delete;
+  SharedStep& operator[](std::size_t p) const { return steps_[p]; }
+  std::size_t size() const { return count_; }
+
+ private:
+  std::size_t bytes() const { return std::max<std::size_t>(1, count_) * sizeof(SharedStep); }
+  std::size_t count_;
+  SharedStep* steps_ = nullptr;
+};
 
 // Contributions go to the parent in blocks, as they arrive at the simulated host, each followed by the
 // processors' progress (for the parent's progress line).
@@ -180,12 +220,15 @@ struct Waiting {
 template <class Real>
 void driveInSimulatedTime(node::LogicalProcessor<Real>& node, queues::SimGridInterconnect<Real>& net, int id,
                           const CostTable& costs, double speedScale, ProcessorReport& report,
-                          std::vector<Timeline>& timelines, Waiting& waiting) {
+                          std::vector<Timeline>& timelines, Waiting& waiting, SharedStep& shared) {
   Timeline& timeline = timelines[std::size_t(id)];
   const ChargedWork charged(costs, speedScale);
   double counted = charged.flopsOf(node.stats());
   for (;;) {
+    shared.stepping.store(true, std::memory_order_relaxed);
     const node::Step step = node.step();
+    shared.stepping.store(false, std::memory_order_relaxed);
+    shared.stepsWorked.store(node.stepsWorked(), std::memory_order_relaxed);
     const double now = charged.flopsOf(node.stats());
     if (now > counted) {
       const double start = s4u::Engine::get_clock();
@@ -215,54 +258,8 @@ struct SimulationInput {
   const EmulatedPlatform& platform;
   std::size_t queueCapacity;
   const std::vector<std::uint32_t>& cubeNode;
-  std::chrono::milliseconds stallPeriod;
   bool stallAStep;
-};
-
-// The emulated machine's watchdog (host/engines/stall_watch.h), on a thread of the simulation's process
-// beside the maestro: actors share its one thread, so a step that does not end stops the simulated clock
-// and every other actor with it, and only the wall clock still moves. When no processor has moved for a
-// whole period and one is inside a step, it sends the failure naming that processor and ends the
-// simulation's process. A machine in which every actor waits is no stall here: SimGrid ends such a run by
-// itself (requireCompleted, or a deadlock with --fifo-full lock).
-template <class Real>
-class SimulationWatch {
- public:
-  SimulationWatch(const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes,
-                  std::chrono::milliseconds period, PipeWriter& out)
-      : watcher_([this, &nodes, period, &out] { watch(nodes, period, out); }) {}
-  ~SimulationWatch() {
-    {
-      std::lock_guard lock(mutex_);
-      done_ = true;
-    }
-    wake_.notify_all();
-    watcher_.join();
-  }
-
- private:
-  void watch(const std::vector<std::unique_ptr<node::LogicalProcessor<Real>>>& nodes,
-             std::chrono::milliseconds period, PipeWriter& out) {
-    StallWatch stallWatch(nodes.size(), period);
-    std::unique_lock lock(mutex_);
-    while (!wake_.wait_for(lock, stallLookEvery(period), [&] { return done_; })) {
-      if (!stallWatch.stalled([&](std::size_t p) { return nodes[p]->stepsWorked(); })) continue;
-      std::string busy;
-      for (std::size_t p = 0; p < nodes.size(); ++p)
-        if (nodes[p]->stepping()) busy += (busy.empty() ? "" : ", ") + std::to_string(p);
-      if (busy.empty()) continue;
-      // The maestro's thread is inside that step, not writing to the pipe: the record goes out whole.
-      out.value(Record::Failure);
-      out.string(stallWatch.headline() + " of wall-clock time; processor " + busy +
-                 " has been inside one step all that time (a walk that does not end)");
-      _exit(3);
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool done_ = false;
-  std::thread watcher_;  // last: it reads the members above
+  const SharedSteps& steps;
 };
 
 // SimGrid's settings: the CM02 network model without cross-traffic, so that a platform's numbers mean what
@@ -393,7 +390,8 @@ void simulate(SimulationInput in, PipeWriter& out) {
   int finished = 0;
   for (int p = 0; p < processors; ++p)
     s4u::Actor::create("processor-" + std::to_string(p), wiring.hosts[in.cubeNode[p]], [&, p] {
-      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, scale, reports[p], timelines, waiting[p]);
+      driveInSimulatedTime(*nodes[p], net, p, in.platform.costs, scale, reports[p], timelines, waiting[p],
+                           in.steps[std::size_t(p)]);
       ++finished;
     });
   ContributionsToParent toParent(out, [&] {
@@ -411,10 +409,7 @@ void simulate(SimulationInput in, PipeWriter& out) {
     hostDone = true;
   });
   net.startCommunicationTasks();
-  {
-    const SimulationWatch<Real> watch(nodes, in.stallPeriod, out);
-    engine->run();
-  }
+  engine->run();
   // SimGrid ends a run where no actor can move as it ends a finished one (it says so on stderr): a cycle
   // of processors locked on each other's full FIFOs (--fifo-full lock) is the run's result.
   std::vector<int> lockedOn;
@@ -528,10 +523,13 @@ MachineRun receiveResults(PipeReader& in, const EngineHooks& hooks) {
 }
 
 // Runs simulate(out) in a child process (SimGrid allows one simulation per process) and read(in) on its
-// results in this one.
+// results in this one. look(child), called every `every` the child is silent, may end it (a watchdog) and
+// throw why: that message replaces the signal's. Without look, the parent waits as long as the child runs.
 template <class Result>
 Result inChildProcess(const std::function<void(PipeWriter&)>& simulate,
-                      const std::function<Result(PipeReader&)>& read) {
+                      const std::function<Result(PipeReader&)>& read,
+                      std::chrono::milliseconds every = std::chrono::milliseconds(-1),
+                      const std::function<void(pid_t)>& look = {}) {
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error("cannot create a pipe for the simulation");
   std::fflush(nullptr);
@@ -551,7 +549,15 @@ Result inChildProcess(const std::function<void(PipeWriter&)>& simulate,
     _exit(0);
   }
   ::close(fds[1]);
-  PipeReader in(fds[0]);
+  bool stalled = false;
+  PipeReader in(fds[0], look ? every : std::chrono::milliseconds(-1), [&] {
+    try {
+      look(child);
+    } catch (...) {
+      stalled = true;
+      throw;
+    }
+  });
   std::optional<Result> run;
   std::string failure;
   try {
@@ -563,7 +569,7 @@ Result inChildProcess(const std::function<void(PipeWriter&)>& simulate,
   int status = 0;
   ::waitpid(child, &status, 0);
   if (!run) {
-    if (WIFSIGNALED(status))
+    if (WIFSIGNALED(status) && !stalled)
       failure += fmt::format(" (the simulation process died of signal {}: {})", WTERMSIG(status),
                              strsignal(WTERMSIG(status)));
     throw std::runtime_error("emulated machine: " + failure);
@@ -598,13 +604,34 @@ MachineRun EmulatedMachine<Real>::run(const node::MachineContext& context,
           e.what(), platform_.platformFile.string()));
     }
   }
+  // The watchdog: no processor moved for a whole period while one is inside a step. Its message replaces
+  // the signal's, which only says the watchdog ended the simulation. From the start of synthesis: setting
+  // up the processors in the child (their cells) moves no step.
+  const SharedSteps steps(setups.size());
+  StallWatch stallWatch(steps.size(), stallPeriod_);
+  bool synthesis = false;
+  EngineHooks watched = hooks;
+  watched.synthesisStarts = [&] {
+    synthesis = true;
+    stallWatch = StallWatch(steps.size(), stallPeriod_);
+    if (hooks.synthesisStarts) hooks.synthesisStarts();
+  };
+  const auto look = [&](pid_t child) {
+    if (!synthesis || !stallWatch.stalled([&](std::size_t p) { return steps[p].stepsWorked.load(); })) return;
+    std::string busy;
+    for (std::size_t p = 0; p < steps.size(); ++p)
+      if (steps[p].stepping.load()) busy += (busy.empty() ? "" : ", ") + std::to_string(p);
+    if (busy.empty()) return;  // every actor waits: SimGrid ends such a run by itself (requireCompleted)
+    ::kill(child, SIGKILL);
+    throw std::runtime_error(stallWatch.headline() + " of wall-clock time; processor " + busy +
+                             " has been inside one step all that time (a walk that does not end)");
+  };
   MachineRun run = inChildProcess<MachineRun>(
       [&](PipeWriter& out) {
         simulate<Real>(
-            SimulationInput{context, setups, platform_, queueCapacity_, cubeNode_, stallPeriod_, stallAStep_},
-            out);
+            SimulationInput{context, setups, platform_, queueCapacity_, cubeNode_, stallAStep_, steps}, out);
       },
-      [&](PipeReader& in) { return receiveResults(in, hooks); });
+      [&](PipeReader& in) { return receiveResults(in, watched); }, stallLookEvery(stallPeriod_), look);
   run.emulated->preprocessing = pre;
   return run;
 }
