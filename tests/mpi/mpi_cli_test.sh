@@ -36,12 +36,14 @@ expect_in "rank 2: stopping: the host (rank 0) failed" out.log "missing scene, r
 
 # 4. A rank killed mid-render: everything ends, non-zero, naming the rank, within seconds.
 tag=raycube-kill-$$-$RANDOM
-timeout 120 "$mpiexec" -n 3 -x RAYCUBE_TEST_TAG=$tag "$raycube" render --balls 3 --size 2048x2048 --transport mpi -q \
+timeout 120 "$mpiexec" -n 3 -x RAYCUBE_TEST_TAG=$tag "$raycube" render --balls 3 --size 2048x2048 --spp 4 --transport mpi -q \
   -o killed.png >killed.log 2>&1 &
 launcher=$!
 victim=""
 for _ in $(seq 200); do
-  for env in /proc/[0-9]*/environ; do
+  # Only raycube processes are looked at: reading every process's environment is slow on a busy
+  # machine, slow enough for the render to end before its rank 2 is found.
+  for env in $(pgrep -x raycube | sed 's|.*|/proc/&/environ|'); do
     if tr '\0' '\n' 2>/dev/null <"$env" | grep -qx "RAYCUBE_TEST_TAG=$tag" &&
        tr '\0' '\n' 2>/dev/null <"$env" | grep -qx "OMPI_COMM_WORLD_RANK=2"; then
       victim=$(basename "$(dirname "$env")")
