@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out = argv[1];
+  std::filesystem::create_directories(out);
   const auto seconds = std::chrono::seconds(std::atoi(argv[2]));
   std::mt19937_64 random(std::strtoull(argv[3], nullptr, 10));
   std::vector<std::string> pool;
@@ -45,6 +47,8 @@ int main(int argc, char** argv) {
     for (int r = 0; r < rounds; ++r) text = raycube::fuzz::mutateNff(text, random);
     if (text.size() > 4096) continue;
     ++inputs;
+    // The input under test, kept until the next one: a crash of the renderer leaves it behind.
+    std::ofstream(out + "/current.nff", std::ios::binary | std::ios::trunc) << text;
     const std::string failure = raycube::fuzz::checkInput(text, "fuzz.nff");
     if (!failure.empty()) {
       const std::string path = out + "/failure-" + std::to_string(failures++) + ".nff";
