@@ -177,8 +177,12 @@ Vec3 binScale(const Box& centroids, int bins) {
   return scale;
 }
 
+// The bin of a centroid, always one of the node's: a centre that is not a number (an object box infinite
+// both ways, from a hither of 1e300) or beyond the last bin's edge is binned at an end, never indexed
+// outside the bins (int(NaN) is undefined; it was a segfault).
 int binOf(double centre, double lo, double scale, int bins) {
-  return std::min(bins - 1, int((centre - lo) * scale));
+  const double at = (centre - lo) * scale;
+  return at >= 0 ? int(std::min(double(bins - 1), at)) : 0;
 }
 
 }  // namespace
